@@ -1,0 +1,33 @@
+# BioVision workspace entry points. Every target installs what is missing and builds first.
+# Debian's ROS 1 needs the system interpreter: a pyenv python3 first on PATH breaks catkin's CMake.
+SHELL := /bin/bash
+export PATH := /usr/bin:/bin:$(PATH)
+JOBS ?= 2
+BUILD_TYPE ?= Release
+CATKIN_ARGS := -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCATKIN_ENABLE_TESTING=ON
+OUT ?= out
+
+.PHONY: all setup build demo test bench lint clean
+
+all: build
+
+setup:
+	@bash scripts/setup.sh
+
+build: setup
+	@catkin_make -j$(JOBS) $(CATKIN_ARGS) 2>&1 | grep -vE "^make\[|Built target|^-- " ; test $${PIPESTATUS[0]} -eq 0
+
+demo: build
+	@bash scripts/demo.sh $(OUT)/demo
+
+test: build
+	@bash scripts/run_tests.sh
+
+bench: build
+	@bash scripts/bench.sh
+
+lint: setup
+	@catkin_lint -W1 --strict src
+
+clean:
+	rm -rf build devel install $(OUT)

@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# `make bench`: runs each package's benchmark tool and regenerates docs/benchmarks.md from their JSON.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+export PATH=/usr/bin:/bin:$PATH
+set +u; source devel/setup.bash; set -u
+out=out/bench
+mkdir -p "$out"
+export BIOVISION_SHARED=${BIOVISION_SHARED:-$(cd .. && pwd)/shared}
+status=0
+# Each line: <name> <command...>; the command must write $out/<name>.json.
+while read -r name cmd; do
+  [[ -z "$name" || "$name" == \#* ]] && continue
+  echo "bench: $name"
+  if ! eval "$cmd"; then echo "bench: $name FAILED"; status=1; fi
+done < scripts/benchmarks.list
+/usr/bin/python3 scripts/bench_report.py "$out" docs/benchmarks.md || status=1
+exit $status

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Runs every gtest and rostest of the workspace (each rostest brings up its own real roscore) and
+# prints one closing line "N passed, N failed, N skipped". Exits non-zero on any failure, on a test
+# binary that produced no result, or when no test ran at all.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+export PATH=/usr/bin:/bin:$PATH
+# shellcheck disable=SC1091
+set +u; source devel/setup.bash; set -u
+export ROS_HOME=${ROS_HOME:-$PWD/build/ros_home}   # logs of test runs stay in the build tree
+export BIOVISION_SHARED=${BIOVISION_SHARED:-$(cd .. && pwd)/shared}
+
+rm -rf build/test_results
+mkdir -p "$ROS_HOME"
+log=build/run_tests.log
+echo "run_tests: running gtests and rostests (log: $log)"
+# -j1: rostests each start a master on the same port; run them one after another.
+make -C build run_tests -j1 >"$log" 2>&1
+build_rc=$?
+grep -E '^\[ *(RUN|  *OK|  FAILED|  PASSED|  SKIPPED) *\]|^\[ROSTEST\]|^\[Testcase|FAILURE|Error' "$log" | grep -vE '^\[ +RUN' | tail -n 200 || true
+
+/usr/bin/python3 scripts/test_summary.py build/test_results
+summary_rc=$?
+if [[ $build_rc -ne 0 ]]; then
+  echo "run_tests: 'make run_tests' exited $build_rc (see $log)"
+  exit 1
+fi
+exit $summary_rc

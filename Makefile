@@ -15,7 +15,7 @@ setup:
 	@bash scripts/setup.sh
 
 build: setup
-	@catkin_make -j$(JOBS) $(CATKIN_ARGS) 2>&1 | grep -vE "^make\[|Built target|^-- " ; test $${PIPESTATUS[0]} -eq 0
+	@catkin_make -j$(JOBS) $(CATKIN_ARGS) all tests 2>&1 | grep -vE "^make\[|Built target|^-- " ; test $${PIPESTATUS[0]} -eq 0
 
 demo: build
 	@bash scripts/demo.sh $(OUT)/demo

@@ -47,7 +47,7 @@ def main(folder, target):
         flatten("", data, rows)
         lines += ["| figure | value |", "|---|---:|"]
         for k, v in rows:
-            lines.append(f"| {k} | {round(v, 4) if isinstance(v, float) else v} |")
+            lines.append(f"| {k} | {format(v, '.4g') if isinstance(v, float) else v} |")
         if notes:
             lines += ["", notes]
         lines.append("")

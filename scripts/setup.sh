@@ -26,6 +26,8 @@ PACKAGES=(
   librosbag-dev liburdf-dev ros-robot-state-publisher
   # image pipeline peers and viewers
   ros-stereo-image-proc ros-image-proc rviz xvfb xauth
+  # real images for the demo that need no ../shared (/usr/share/doc/opencv-doc/examples/data)
+  opencv-doc
   # libraries the ROS-free cores use
   libopencv-dev libopencv-contrib-dev libeigen3-dev liblinear-dev
   # tests and benchmarks

@@ -1,0 +1,65 @@
+#pragma once
+
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "biovision_v1/gabor_parameters.hpp"
+#include "biovision_v1/scale_responses.hpp"
+
+namespace biovision_v1
+{
+/// Even and odd simple cells for every scale and orientation, computed in the frequency domain.
+///
+/// Why it is fast and still exact:
+/// - even + i*odd is one complex kernel, so one complex inverse DFT gives R^E (real part) and R^O
+///   (imaginary part) of an orientation at once;
+/// - the image spectrum is computed once per scale and shared by all orientations;
+/// - a coarse scale is sampled on a coarser grid by folding the product spectrum (the spectrum of the
+///   full convolution sampled every d pixels is the sum of its d x d aliases), so the inverse DFT is
+///   d^2 times smaller and the result is the full-resolution convolution at those samples, up to the
+///   kernel's spectral leakage beyond the coarse Nyquist frequency. A quadrature (complex) response has a
+///   one-sided spectrum, so its grid only needs lambda / d >= 2, not 4 as a real band-pass would;
+/// - the product is only formed where the kernel's spectrum is not negligible (the Gabor lobe covers
+///   about a tenth of the spectrum), fused with the folding;
+/// - the image is padded by the kernel radius with BORDER_REFLECT_101, so the circular convolution
+///   equals cv::filter2D's border handling.
+/// Kernel spectra are cached per image size; compute() rebuilds them when the size changes.
+class SimpleCellBank
+{
+public:
+  explicit SimpleCellBank(const GaborParameters& parameters);
+
+  /// gray: CV_32FC1 (see InputImage). Returns one ScaleResponses per wavelength, in order.
+  std::vector<ScaleResponses> compute(const cv::Mat& gray);
+
+  const GaborParameters& parameters() const { return parameters_; }
+
+private:
+  struct SpectrumRun
+  {
+    int row, col;             // first entry in the full-resolution spectrum
+    int grid_row, grid_col;   // where it folds to on the grid
+    std::vector<cv::Vec2f> h; // kernel spectrum values along the row
+  };
+
+  struct ScalePlan
+  {
+    double wavelength = 0.0;
+    int decimation = 1;
+    int padding = 0;        // image padding [px], a multiple of decimation
+    cv::Size padded;        // DFT size at full resolution, a multiple of decimation
+    int spectrum_source = 0;  // index of the scale whose image spectrum this scale reads
+    // Per orientation: the kernel spectrum (DFT of the flipped complex kernel, / d^2) where it is not
+    // negligible, as runs along spectrum rows, each already mapped onto the folded grid.
+    std::vector<std::vector<SpectrumRun>> runs;
+  };
+
+  void plan(const cv::Size& image_size);
+  static std::vector<SpectrumRun> supportRuns(const cv::Mat& spectrum, const cv::Size& grid);
+
+  GaborParameters parameters_;
+  cv::Size planned_size_;
+  std::vector<ScalePlan> plans_;
+};
+}  // namespace biovision_v1

@@ -1,0 +1,234 @@
+#include "biovision_v1/ros/v1_cells_nodelet.hpp"
+
+#include <chrono>
+#include <sstream>
+
+#include <biovision_msgs/KeypointArray.h>
+#include <cv_bridge/cv_bridge.h>
+#include <opencv2/imgproc.hpp>
+#include <pluginlib/class_list_macros.hpp>
+#include <sensor_msgs/image_encodings.h>
+
+#include "biovision_v1/input_image.hpp"
+
+namespace biovision_v1
+{
+namespace enc = sensor_msgs::image_encodings;
+
+namespace
+{
+// Parses "4 8 16" (or commas) into ascending wavelengths; throws std::invalid_argument when it cannot.
+std::vector<double> parseWavelengths(const std::string& text)
+{
+  std::string s = text;
+  std::replace(s.begin(), s.end(), ',', ' ');
+  std::istringstream in(s);
+  std::vector<double> values;
+  double v;
+  while (in >> v)
+    values.push_back(v);
+  if (!in.eof() || values.empty())
+    throw std::invalid_argument("wavelengths '" + text + "' is not a list of numbers");
+  return values;
+}
+
+// Camera encodings -> what InputImage reads (BGR order for colour). Throws on encodings we cannot read.
+cv::Mat toInput(const sensor_msgs::ImageConstPtr& msg)
+{
+  const std::string& e = msg->encoding;
+  if (enc::isBayer(e) || e == enc::YUV422)
+    throw std::invalid_argument("unsupported encoding '" + e + "': debayer first (image_proc)");
+  cv_bridge::CvImageConstPtr cv = cv_bridge::toCvShare(msg);
+  if (e == enc::RGB8 || e == enc::RGB16)
+  {
+    cv::Mat bgr;
+    cv::cvtColor(cv->image, bgr, cv::COLOR_RGB2BGR);
+    return bgr;
+  }
+  if (e == enc::RGBA8 || e == enc::RGBA16)
+  {
+    cv::Mat bgr;
+    cv::cvtColor(cv->image, bgr, cv::COLOR_RGBA2BGR);
+    return bgr;
+  }
+  return cv->image;
+}
+}  // namespace
+
+V1CellsNodelet::~V1CellsNodelet() = default;
+
+void V1CellsNodelet::onInit()
+{
+  ros::NodeHandle& nh = getNodeHandle();
+  ros::NodeHandle& pnh = getPrivateNodeHandle();
+  it_ = std::make_unique<image_transport::ImageTransport>(nh);
+  pnh.param("diagnostics_min_rate", min_rate_, 1.0);
+  pnh.param("diagnostics_max_rate", max_rate_, 100.0);
+
+  // Parameters from YAML arrive through dynamic_reconfigure's server (it reads the private namespace).
+  reconfigure_server_ = std::make_unique<dynamic_reconfigure::Server<V1CellsConfig>>(reconfigure_mutex_, pnh);
+  reconfigure_server_->setCallback([this](V1CellsConfig& c, uint32_t level) { reconfigure(c, level); });
+
+  updater_ = std::make_unique<diagnostic_updater::Updater>(nh, pnh, getName());
+  updater_->setHardwareID("none");
+  updater_->add("V1 cells", this, &V1CellsNodelet::diagnose);
+  rate_diagnostic_ = std::make_unique<diagnostic_updater::HeaderlessTopicDiagnostic>(
+      "keypoints", *updater_, diagnostic_updater::FrequencyStatusParam(&min_rate_, &max_rate_, 0.1, 10));
+  diagnostics_timer_ = nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { updater_->update(); });
+
+  std::lock_guard<std::mutex> lock(connect_mutex_);
+  auto connect = [this](const auto&) { connectCallback(); };
+  keypoints_pub_ = nh.advertise<biovision_msgs::KeypointArray>(
+      "keypoints", 5, ros::SubscriberStatusCallback(connect), ros::SubscriberStatusCallback(connect));
+  debug_pub_ = it_->advertise("debug_image", 1, image_transport::SubscriberStatusCallback(connect),
+                              image_transport::SubscriberStatusCallback(connect));
+}
+
+void V1CellsNodelet::connectCallback()
+{
+  std::lock_guard<std::mutex> lock(connect_mutex_);
+  const bool wanted = keypoints_pub_.getNumSubscribers() > 0 || debug_pub_.getNumSubscribers() > 0;
+  if (!wanted && image_sub_)
+  {
+    NODELET_DEBUG("no subscribers: unsubscribing from %s", image_sub_.getTopic().c_str());
+    image_sub_.shutdown();
+  }
+  else if (wanted && !image_sub_)
+  {
+    image_transport::TransportHints hints("raw", ros::TransportHints(), getPrivateNodeHandle());
+    image_sub_ = it_->subscribe("image", 1, &V1CellsNodelet::imageCallback, this, hints);
+  }
+}
+
+void V1CellsNodelet::reconfigure(V1CellsConfig& config, uint32_t /*level*/)
+{
+  V1Pipeline::Parameters p;
+  try
+  {
+    p.gabor.wavelengths = parseWavelengths(config.wavelengths);
+    p.gabor.orientations = config.orientations;
+    p.gabor.sigma_per_wavelength = config.sigma_per_wavelength;
+    p.gabor.aspect_ratio = config.aspect_ratio;
+    p.gabor.min_grid_wavelength = config.min_grid_wavelength;
+    p.keypoints.threshold = config.keypoint_threshold;
+    p.keypoints.min_contrast = config.min_contrast;
+    p.keypoints.inhibition_gain = config.inhibition_gain;
+    p.keypoints.radial_factor = config.radial_factor;
+    p.keypoints.junction_weight = config.junction_weight;
+    p.keypoints.junction_balance = config.junction_balance;
+    p.keypoints.max_keypoints = config.max_keypoints;
+    p.line_edges.relative_threshold = config.line_edge_threshold;
+    p.line_edges.min_contrast = config.min_contrast;
+    p.line_edges.lateral_inhibition = config.lateral_inhibition;
+    p.end_stop_offset = config.end_stop_offset;
+    auto pipeline = std::make_unique<V1Pipeline>(p);
+    std::lock_guard<std::mutex> lock(pipeline_mutex_);
+    pipeline_ = std::move(pipeline);
+    NODELET_INFO("V1 cells: wavelengths [%s], %d orientations", config.wavelengths.c_str(), config.orientations);
+  }
+  catch (const std::invalid_argument& e)
+  {
+    // Keep the previous, valid pipeline; a rejected value never gets used.
+    NODELET_ERROR("V1 cells: rejected parameters (%s); keeping the previous ones", e.what());
+    std::lock_guard<std::mutex> lock(pipeline_mutex_);
+    last_error_ = std::string("rejected parameters: ") + e.what();
+    last_error_time_ = ros::Time::now();
+    if (!pipeline_)
+      pipeline_ = std::make_unique<V1Pipeline>(V1Pipeline::Parameters());
+  }
+}
+
+void V1CellsNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
+{
+  const auto start = std::chrono::steady_clock::now();
+  V1Result result;
+  cv::Mat input;
+  const bool want_debug = debug_pub_.getNumSubscribers() > 0;
+  {
+    std::lock_guard<std::mutex> lock(pipeline_mutex_);
+    try
+    {
+      input = toInput(msg);
+      result = pipeline_->process(input, want_debug);
+    }
+    catch (const std::exception& e)  // invalid_argument, cv_bridge::Exception, cv::Exception
+    {
+      last_error_ = e.what();
+      last_error_time_ = ros::Time::now();
+      NODELET_ERROR_THROTTLE(5.0, "V1 cells: dropping image %ux%u '%s' from %s: %s", msg->width, msg->height,
+                             msg->encoding.c_str(), image_sub_.getTopic().c_str(), e.what());
+      return;
+    }
+    last_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    last_keypoints_ = result.keypoints.size();
+    last_nonfinite_ = result.nonfinite_pixels;
+  }
+  if (result.nonfinite_pixels > 0)
+    NODELET_WARN_THROTTLE(5.0, "V1 cells: %d NaN/Inf pixels replaced by 0", result.nonfinite_pixels);
+
+  auto out = boost::make_shared<biovision_msgs::KeypointArray>();
+  out->header = msg->header;
+  out->image_width = msg->width;
+  out->image_height = msg->height;
+  out->keypoints.reserve(result.keypoints.size());
+  for (const Keypoint& k : result.keypoints)
+  {
+    biovision_msgs::Keypoint m;
+    m.x = k.x;
+    m.y = k.y;
+    m.wavelength = k.wavelength;
+    m.strength = k.strength;
+    m.orientation = k.orientation;
+    out->keypoints.push_back(m);
+  }
+  keypoints_pub_.publish(out);
+  rate_diagnostic_->tick();
+  if (want_debug)
+    debug_pub_.publish(debugImage(input, result, msg->header));
+}
+
+sensor_msgs::ImagePtr V1CellsNodelet::debugImage(const cv::Mat& input, const V1Result& result,
+                                                 const std_msgs::Header& header) const
+{
+  // Dimmed grey image, line/edge events of the finest scale, keypoints as circles of radius lambda/2.
+  cv::Mat gray = InputImage(input).gray(), canvas;
+  cv::Mat gray8;
+  gray.convertTo(gray8, CV_8U, 255.0 * 0.5);
+  cv::cvtColor(gray8, canvas, cv::COLOR_GRAY2BGR);
+  static const cv::Vec3b kEventColour[5] = {{0, 0, 0}, {255, 255, 255}, {255, 80, 0}, {0, 220, 0}, {0, 0, 255}};
+  if (!result.line_edges.empty())
+  {
+    const LineEdgeMap& le = result.line_edges.front();
+    const int d = le.decimation;
+    for (int y = 0; y < le.events.rows; ++y)
+      for (int x = 0; x < le.events.cols; ++x)
+      {
+        const uchar e = le.events.at<uchar>(y, x);
+        if (e != LineEdgeMap::kNone)
+          canvas(cv::Rect(x * d, y * d, d, d) & cv::Rect(0, 0, canvas.cols, canvas.rows)).setTo(kEventColour[e]);
+      }
+  }
+  for (const Keypoint& k : result.keypoints)
+    cv::circle(canvas, cv::Point(cvRound(k.x), cvRound(k.y)), std::max(2, cvRound(k.wavelength / 2)), cv::Scalar(0, 255, 255), 1,
+               cv::LINE_AA);
+  return cv_bridge::CvImage(header, enc::BGR8, canvas).toImageMsg();
+}
+
+void V1CellsNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
+{
+  std::lock_guard<std::mutex> lock(pipeline_mutex_);
+  const bool recent_error = !last_error_.empty() && (ros::Time::now() - last_error_time_).toSec() < 10.0;
+  if (recent_error)
+    status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, last_error_);
+  else if (!image_sub_)
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "idle: nobody subscribes to keypoints or debug_image");
+  else
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "processing");
+  status.add("last processing time [ms]", last_ms_);
+  status.add("last keypoints", last_keypoints_);
+  status.add("last NaN/Inf pixels", last_nonfinite_);
+  status.add("last error", last_error_);
+}
+}  // namespace biovision_v1
+
+PLUGINLIB_EXPORT_CLASS(biovision_v1::V1CellsNodelet, nodelet::Nodelet)

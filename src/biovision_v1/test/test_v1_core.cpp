@@ -1,0 +1,420 @@
+// Unit tests of the ROS-free V1 core on synthetic images with known answers.
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "biovision_v1/direct_gabor_bank.hpp"
+#include "biovision_v1/end_stopped_cells.hpp"
+#include "biovision_v1/gabor_kernel.hpp"
+#include "biovision_v1/input_image.hpp"
+#include "biovision_v1/line_edge_detector.hpp"
+#include "biovision_v1/simple_cell_bank.hpp"
+#include "biovision_v1/v1_pipeline.hpp"
+
+using namespace biovision_v1;
+
+namespace
+{
+constexpr float kBackground = 0.2f, kForeground = 0.8f;
+
+cv::Mat canvas(int w = 160, int h = 120)
+{
+  return cv::Mat(h, w, CV_32F, cv::Scalar(kBackground));
+}
+
+// Textured image for comparing the fast bank with the direct convolution.
+cv::Mat texture(int w, int h, unsigned seed)
+{
+  cv::RNG rng(seed);
+  cv::Mat noise(h / 4, w / 4, CV_32F);
+  rng.fill(noise, cv::RNG::UNIFORM, 0.0, 1.0);
+  cv::Mat img;
+  cv::resize(noise, img, cv::Size(w, h), 0, 0, cv::INTER_CUBIC);
+  cv::line(img, {w / 5, h / 3}, {4 * w / 5, 2 * h / 3}, cv::Scalar(1.0), 2);
+  return img;
+}
+
+double distanceToNearest(const std::vector<Keypoint>& kps, cv::Point2f p, double max_wavelength = 1e9)
+{
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& k : kps)
+    if (k.wavelength <= max_wavelength)
+      best = std::min(best, static_cast<double>(std::hypot(k.x - p.x, k.y - p.y)));
+  return best;
+}
+
+V1Pipeline::Parameters singleScale(double wavelength)
+{
+  V1Pipeline::Parameters p;
+  p.gabor.wavelengths = {wavelength};
+  return p;
+}
+}  // namespace
+
+TEST(GaborKernel, EvenIsDcFreeOddIsAntisymmetric)
+{
+  GaborParameters p;
+  for (double lambda : {4.0, 8.0, 16.0})
+    for (int i = 0; i < p.orientations; ++i)
+    {
+      GaborKernel k(lambda, p.theta(i), p);
+      EXPECT_NEAR(cv::sum(k.even())[0], 0.0, 1e-5);
+      cv::Mat flipped;
+      cv::flip(k.odd(), flipped, -1);
+      EXPECT_LT(cv::norm(k.odd() + flipped, cv::NORM_INF), 1e-6);
+      EXPECT_EQ(k.even().rows, 2 * p.radius(lambda) + 1);
+    }
+}
+
+TEST(GaborParameters, RejectsBadValues)
+{
+  GaborParameters p;
+  p.orientations = 3;
+  EXPECT_THROW(p.validate(), std::invalid_argument);
+  p = GaborParameters();
+  p.wavelengths = {8, 4};
+  EXPECT_THROW(p.validate(), std::invalid_argument);
+  p = GaborParameters();
+  p.wavelengths = {};
+  EXPECT_THROW(p.validate(), std::invalid_argument);
+  EXPECT_NO_THROW(GaborParameters().validate());
+}
+
+TEST(SimpleCellBank, EqualsDirectConvolutionAtEveryGrid)
+{
+  const cv::Mat img = texture(173, 131, 7);  // odd sizes exercise padding and cropping
+  for (double min_grid : {0.0, 2.0, 4.0})
+  {
+    GaborParameters p;
+    p.wavelengths = {4, 6, 8, 12, 16, 24, 32};
+    p.min_grid_wavelength = min_grid;
+    SimpleCellBank bank(p);
+    const auto ours = bank.compute(img);
+    const auto ref = DirectGaborBank(p).compute(img);
+    // Stated tolerance: 1e-4 of the largest response (measured ~2e-6, float rounding).
+    EXPECT_LT(DirectGaborBank::maxRelativeError(ours, ref), 1e-4) << "min_grid_wavelength " << min_grid;
+    // Decimation follows lambda / d >= min_grid.
+    if (min_grid == 2.0)
+    {
+      EXPECT_EQ(ours[0].decimation, 2);  // lambda 4
+      EXPECT_EQ(ours[6].decimation, 16); // lambda 32
+      EXPECT_EQ(ours[0].gridSize(), cv::Size(87, 66));
+    }
+  }
+}
+
+TEST(SimpleCellBank, ReplansWhenTheImageSizeChanges)
+{
+  GaborParameters p;
+  SimpleCellBank bank(p);
+  const auto ref_small = DirectGaborBank(p).compute(texture(64, 48, 1));
+  const auto ref_large = DirectGaborBank(p).compute(texture(96, 80, 2));
+  EXPECT_LT(DirectGaborBank::maxRelativeError(bank.compute(texture(96, 80, 2)), ref_large), 1e-4);
+  EXPECT_LT(DirectGaborBank::maxRelativeError(bank.compute(texture(64, 48, 1)), ref_small), 1e-4);
+}
+
+TEST(SimpleCellBank, UniformImageGivesNoResponse)
+{
+  GaborParameters p;
+  SimpleCellBank bank(p);
+  for (const auto& scale : bank.compute(cv::Mat(60, 80, CV_32F, cv::Scalar(0.7))))
+    for (int i = 0; i < scale.orientations(); ++i)
+      EXPECT_LT(cv::norm(scale.complexCell(i), cv::NORM_INF), 1e-5);
+}
+
+TEST(SimpleCellBank, GratingAtPreferredFrequencyGivesHalfItsAmplitude)
+{
+  // A vertical sinusoidal grating of amplitude A: the theta = 0 complex cell responds ~A/2.
+  cv::Mat img(96, 128, CV_32F);
+  const double lambda = 8.0, amplitude = 0.4;
+  for (int y = 0; y < img.rows; ++y)
+    for (int x = 0; x < img.cols; ++x)
+      img.at<float>(y, x) = static_cast<float>(0.5 + amplitude * std::cos(2 * M_PI * x / lambda));
+  GaborParameters p;
+  p.wavelengths = {lambda};
+  SimpleCellBank bank(p);
+  const auto r = bank.compute(img);
+  const cv::Mat c = r[0].complexCell(0);
+  const cv::Size g = r[0].gridSize();
+  EXPECT_NEAR(c.at<float>(g.height / 2, g.width / 2), amplitude / 2, 0.02);
+}
+
+TEST(LineEdgeDetector, BarGivesPositiveLineAtItsPositionInItsChannel)
+{
+  // Bright vertical bar 4 px wide centred at x = 80: line+ in channel 0 (normal along x).
+  cv::Mat img = canvas();
+  cv::rectangle(img, cv::Rect(78, 10, 4, 100), cv::Scalar(kForeground), cv::FILLED);
+  V1Pipeline pipeline(singleScale(8.0));
+  const auto result = pipeline.process(img, true);
+  const LineEdgeMap& le = result.line_edges[0];
+  const int d = le.decimation;
+  const int row = 60 / d;
+  int found = -1;
+  for (int x = 0; x < le.events.cols; ++x)
+    if (le.events.at<uchar>(row, x) == LineEdgeMap::kLinePositive)
+    {
+      EXPECT_EQ(le.orientation.at<uchar>(row, x), 0);
+      found = x * d;
+    }
+  ASSERT_GE(found, 0) << "no line event on the bar";
+  EXPECT_NEAR(found, 79.5, 2.5);
+  // Nothing but the bar's line on that row (no edge events beside a thin bar).
+  for (int x = 0; x < le.events.cols; ++x)
+  {
+    if (std::abs(x * d - 79.5) > 4)
+    {
+      EXPECT_EQ(le.events.at<uchar>(row, x), LineEdgeMap::kNone) << "x=" << x * d;
+    }
+  }
+}
+
+TEST(LineEdgeDetector, DarkBarGivesNegativeLine)
+{
+  cv::Mat img(120, 160, CV_32F, cv::Scalar(kForeground));
+  cv::rectangle(img, cv::Rect(10, 58, 140, 4), cv::Scalar(kBackground), cv::FILLED);  // horizontal
+  V1Pipeline pipeline(singleScale(8.0));
+  const LineEdgeMap le = pipeline.process(img, true).line_edges[0];
+  const int d = le.decimation, col = 80 / d;
+  int hits = 0;
+  for (int y = 0; y < le.events.rows; ++y)
+    if (le.events.at<uchar>(y, col) == LineEdgeMap::kLineNegative)
+    {
+      ++hits;
+      EXPECT_EQ(le.orientation.at<uchar>(y, col), 4);  // theta = 90 deg: normal along y
+      EXPECT_NEAR(y * d, 59.5, 2.5);
+    }
+  EXPECT_GE(hits, 1);
+}
+
+TEST(LineEdgeDetector, StepEdgeGivesEdgeEvent)
+{
+  // Dark left half, bright right half: dark-to-bright along +x = edge+ in channel 0 at x = 80.
+  cv::Mat img = canvas();
+  img(cv::Rect(80, 0, 80, 120)).setTo(kForeground);
+  V1Pipeline pipeline(singleScale(8.0));
+  const LineEdgeMap le = pipeline.process(img, true).line_edges[0];
+  const int d = le.decimation, row = 60 / d;
+  int found = -1;
+  for (int x = 0; x < le.events.cols; ++x)
+    if (le.events.at<uchar>(row, x) != LineEdgeMap::kNone)
+    {
+      EXPECT_EQ(le.events.at<uchar>(row, x), LineEdgeMap::kEdgePositive);
+      EXPECT_EQ(le.orientation.at<uchar>(row, x), 0);
+      found = x * d;
+    }
+  ASSERT_GE(found, 0);
+  EXPECT_NEAR(found, 79.5, 2.5);
+  // The mirrored edge is edge-.
+  cv::Mat mirrored;
+  cv::flip(img, mirrored, 1);
+  const LineEdgeMap le2 = pipeline.process(mirrored, true).line_edges[0];
+  int negatives = 0;
+  for (int x = 0; x < le2.events.cols; ++x)
+    negatives += le2.events.at<uchar>(row, x) == LineEdgeMap::kEdgeNegative;
+  EXPECT_GE(negatives, 1);
+}
+
+TEST(LineEdgeDetector, LateralInhibitionStopsEventsPastALineEnd)
+{
+  // A bar ending at y = 60: well past its end (y >= 60 + lambda) there must be no event.
+  cv::Mat img = canvas();
+  cv::rectangle(img, cv::Rect(78, 0, 4, 60), cv::Scalar(kForeground), cv::FILLED);
+  V1Pipeline pipeline(singleScale(8.0));
+  const LineEdgeMap le = pipeline.process(img, true).line_edges[0];
+  const int d = le.decimation;
+  for (int y = (60 + 8) / d; y < le.events.rows; ++y)
+    for (int x = 70 / d; x <= 90 / d; ++x)
+      EXPECT_EQ(le.events.at<uchar>(y, x), LineEdgeMap::kNone) << "event at " << x * d << "," << y * d;
+}
+
+TEST(V1Pipeline, BlankImageGivesNoKeypoints)
+{
+  V1Pipeline pipeline{V1Pipeline::Parameters()};
+  EXPECT_TRUE(pipeline.process(canvas()).keypoints.empty());
+  cv::Mat noisy = canvas();
+  cv::RNG rng(3);
+  cv::Mat n(noisy.size(), CV_32F);
+  rng.fill(n, cv::RNG::NORMAL, 0.0, 0.002);  // sensor noise far below any edge
+  EXPECT_TRUE(pipeline.process(noisy + n).keypoints.empty());
+}
+
+TEST(V1Pipeline, JunctionsEndsAndBlobGiveKeypointsWithin2px)
+{
+  // Default multi-scale pipeline (lambda 4, 8, 16): some scale must put a keypoint on each vertex.
+  V1Pipeline pipeline{V1Pipeline::Parameters()};
+  struct Case
+  {
+    const char* name;
+    cv::Mat image;
+    cv::Point2f vertex;
+  };
+  std::vector<Case> cases;
+  {  // L: solid corner of a bright square
+    cv::Mat img = canvas();
+    cv::rectangle(img, cv::Rect(80, 60, 80, 60), cv::Scalar(kForeground), cv::FILLED);
+    cases.push_back({"L-junction", img, {79.5f, 59.5f}});
+  }
+  {  // T: a 2 px line ending on another
+    cv::Mat img = canvas();
+    cv::rectangle(img, cv::Rect(20, 40, 120, 2), cv::Scalar(kForeground), cv::FILLED);
+    cv::rectangle(img, cv::Rect(79, 42, 2, 60), cv::Scalar(kForeground), cv::FILLED);
+    cases.push_back({"T-junction", img, {79.5f, 41.5f}});
+  }
+  {  // X: two crossing 2 px lines
+    cv::Mat img = canvas();
+    cv::rectangle(img, cv::Rect(20, 59, 120, 2), cv::Scalar(kForeground), cv::FILLED);
+    cv::rectangle(img, cv::Rect(79, 10, 2, 100), cv::Scalar(kForeground), cv::FILLED);
+    cases.push_back({"X-junction", img, {79.5f, 59.5f}});
+  }
+  {  // X at 60 degrees, 1 px lines
+    cv::Mat img = canvas();
+    cv::line(img, {10, 60}, {150, 60}, cv::Scalar(kForeground), 1, cv::LINE_AA);
+    cv::line(img, {52, 12}, {107, 107}, cv::Scalar(kForeground), 1, cv::LINE_AA);
+    cases.push_back({"X-junction 60 deg", img, {80.f, 60.f}});
+  }
+  {  // blob
+    cv::Mat img = canvas();
+    cv::circle(img, {80, 60}, 4, cv::Scalar(kForeground), cv::FILLED, cv::LINE_AA);
+    cases.push_back({"blob", img, {80.f, 60.f}});
+  }
+  {  // line end
+    cv::Mat img = canvas();
+    cv::rectangle(img, cv::Rect(20, 59, 100, 2), cv::Scalar(kForeground), cv::FILLED);
+    cases.push_back({"line end", img, {119.5f, 59.5f}});
+  }
+  for (const auto& c : cases)
+  {
+    const auto kps = pipeline.process(c.image).keypoints;
+    EXPECT_LE(distanceToNearest(kps, c.vertex), 2.0) << c.name << ": " << kps.size() << " keypoints";
+  }
+}
+
+TEST(V1Pipeline, KeypointOrientationAndScaleAreReported)
+{
+  cv::Mat img = canvas();
+  cv::circle(img, {80, 60}, 4, cv::Scalar(kForeground), cv::FILLED, cv::LINE_AA);
+  V1Pipeline pipeline{V1Pipeline::Parameters()};
+  const auto kps = pipeline.process(img).keypoints;
+  ASSERT_FALSE(kps.empty());
+  for (size_t k = 1; k < kps.size(); ++k)
+    EXPECT_GE(kps[k - 1].strength, kps[k].strength) << "strongest first";
+  for (const auto& k : kps)
+  {
+    EXPECT_TRUE(k.wavelength == 4.f || k.wavelength == 8.f || k.wavelength == 16.f);
+    EXPECT_GE(k.orientation, 0.f);
+    EXPECT_LT(k.orientation, static_cast<float>(M_PI));
+  }
+}
+
+TEST(V1Pipeline, StraightEdgesAndLinesHaveNoKeypointsInTheirMiddle)
+{
+  V1Pipeline pipeline{V1Pipeline::Parameters()};
+  cv::Mat edge = canvas();
+  edge(cv::Rect(0, 0, 80, 120)).setTo(kForeground);  // spans the whole height
+  for (const auto& k : pipeline.process(edge).keypoints)
+    EXPECT_FALSE(std::abs(k.y - 60) < 30) << "keypoint on a straight edge at " << k.x << "," << k.y;
+  cv::Mat line = canvas();
+  cv::rectangle(line, cv::Rect(10, 59, 140, 2), cv::Scalar(kForeground), cv::FILLED);
+  for (const auto& k : pipeline.process(line).keypoints)
+    EXPECT_FALSE(std::abs(k.x - 80) < 40) << "keypoint on a straight line at " << k.x << "," << k.y;
+}
+
+TEST(V1Pipeline, Rotating45DegreesMovesTheMaximumByTwoChannels)
+{
+  cv::Mat img = canvas(161, 161);
+  cv::rectangle(img, cv::Rect(78, 20, 5, 121), cv::Scalar(kForeground), cv::FILLED);
+  GaborParameters p;
+  p.wavelengths = {8.0};
+  SimpleCellBank bank(p);
+  auto dominant = [&](const cv::Mat& m) {
+    const auto r = bank.compute(m);
+    const cv::Size g = r[0].gridSize();
+    int best = 0;
+    float best_v = -1;
+    for (int i = 0; i < r[0].orientations(); ++i)
+    {
+      const float v = r[0].complexCell(i).at<float>(g.height / 2, g.width / 2);
+      if (v > best_v)
+      {
+        best_v = v;
+        best = i;
+      }
+    }
+    return best;
+  };
+  const int before = dominant(img);
+  cv::Mat rotated;
+  // +45 deg is counter-clockwise on screen; with y down that turns theta by -45 deg: two channels down.
+  cv::warpAffine(img, rotated, cv::getRotationMatrix2D({80, 80}, 45, 1.0), img.size(), cv::INTER_LINEAR,
+                 cv::BORDER_CONSTANT, cv::Scalar(kBackground));
+  EXPECT_EQ(before, 0);
+  EXPECT_EQ(dominant(rotated), (before - 2 + 8) % 8);
+}
+
+TEST(InputImage, ConvertsDepthsAndChannels)
+{
+  cv::Mat u8(20, 20, CV_8UC3, cv::Scalar(255, 255, 255));
+  EXPECT_NEAR(InputImage(u8).gray().at<float>(5, 5), 1.0, 1e-6);
+  cv::Mat u16(20, 20, CV_16U, cv::Scalar(65535 / 2));
+  EXPECT_NEAR(InputImage(u16).gray().at<float>(5, 5), 0.5, 1e-4);
+  cv::Mat f64(20, 20, CV_64F, cv::Scalar(0.25));
+  EXPECT_NEAR(InputImage(f64).gray().at<float>(5, 5), 0.25, 1e-6);
+  cv::Mat bgra(20, 20, CV_8UC4, cv::Scalar(0, 0, 0, 255));
+  EXPECT_NEAR(InputImage(bgra).gray().at<float>(5, 5), 0.0, 1e-6);
+}
+
+TEST(InputImage, RejectsBadInputClearly)
+{
+  EXPECT_THROW(InputImage(cv::Mat()), std::invalid_argument);
+  EXPECT_THROW(InputImage(cv::Mat(1, 1, CV_8U)), std::invalid_argument);
+  EXPECT_THROW(InputImage(cv::Mat(20, 20, CV_32S)), std::invalid_argument);
+  EXPECT_THROW(InputImage(cv::Mat(20, 20, CV_8UC2)), std::invalid_argument);
+  try
+  {
+    InputImage(cv::Mat(4, 30, CV_8U));
+    FAIL();
+  }
+  catch (const std::invalid_argument& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("30x4"), std::string::npos) << e.what();
+  }
+}
+
+TEST(V1Pipeline, NonFinitePixelsAreReplacedAndCounted)
+{
+  cv::Mat img = canvas();
+  cv::rectangle(img, cv::Rect(80, 60, 80, 60), cv::Scalar(kForeground), cv::FILLED);
+  img.at<float>(10, 10) = std::numeric_limits<float>::quiet_NaN();
+  img.at<float>(20, 30) = std::numeric_limits<float>::infinity();
+  V1Pipeline pipeline{V1Pipeline::Parameters()};
+  const auto r = pipeline.process(img);
+  EXPECT_EQ(r.nonfinite_pixels, 2);
+  for (const auto& k : r.keypoints)
+  {
+    EXPECT_TRUE(std::isfinite(k.x) && std::isfinite(k.y) && std::isfinite(k.strength));
+  }
+}
+
+TEST(V1Pipeline, ImageSmallerThanTheFilterSupportIsDefined)
+{
+  // 12x10 is smaller than every kernel (lambda 16 has radius 63): responses exist, coarse scales
+  // give no keypoints, nothing is NaN.
+  cv::Mat img(10, 12, CV_8U, cv::Scalar(50));
+  img(cv::Rect(6, 0, 6, 10)).setTo(200);
+  V1Pipeline pipeline{V1Pipeline::Parameters()};
+  const auto r = pipeline.process(img, true);
+  ASSERT_EQ(r.responses.size(), 3u);
+  for (const auto& s : r.responses)
+    for (int i = 0; i < s.orientations(); ++i)
+      EXPECT_TRUE(cv::checkRange(s.even[i]) && cv::checkRange(s.odd[i]));
+  for (const auto& k : r.keypoints)
+    EXPECT_LE(k.wavelength, 5.0);
+}
+
+int main(int argc, char** argv)
+{
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}

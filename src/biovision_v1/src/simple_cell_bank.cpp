@@ -1,6 +1,7 @@
 #include "biovision_v1/simple_cell_bank.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
@@ -116,18 +117,29 @@ void SimpleCellBank::plan(const cv::Size& image_size)
       cv::dft(h, spectrum, cv::DFT_COMPLEX_OUTPUT);
       spectrum *= 1.0 / (d * d);
       p.runs.push_back(supportRuns(spectrum, grid));
+      if (d == 1)
+      {
+        // Odd-only pairs: orientation i goes to the real part, i+1 to the imaginary part.
+        std::vector<cv::Mat> parts;
+        cv::split(h, parts);
+        if (i % 2 == 0)
+          p.odd_pair_spectra.push_back(cv::Mat(p.padded, CV_32FC2, cv::Scalar::all(0)));
+        cv::Mat pair_parts[2];
+        cv::split(p.odd_pair_spectra.back(), pair_parts);
+        parts[1].copyTo(pair_parts[i % 2]);
+        cv::merge(pair_parts, 2, p.odd_pair_spectra.back());
+      }
     }
+    // The pairs were filled in the spatial domain; transform them once complete.
+    for (cv::Mat& pair : p.odd_pair_spectra)
+      cv::dft(pair, pair, cv::DFT_COMPLEX_OUTPUT);
   }
   planned_size_ = image_size;
 }
 
-std::vector<ScaleResponses> SimpleCellBank::compute(const cv::Mat& gray)
+std::vector<cv::Mat> SimpleCellBank::imageSpectra(const cv::Mat& gray) const
 {
-  CV_Assert(gray.type() == CV_32FC1 && !gray.empty());
-  plan(gray.size());
   const int n_scales = static_cast<int>(plans_.size());
-  const int n_orient = parameters_.orientations;
-
   // Image spectra, one per distinct padding (coarse scales share the widest one).
   std::vector<cv::Mat> image_spectra(n_scales);
   std::vector<int> sources;
@@ -145,6 +157,49 @@ std::vector<ScaleResponses> SimpleCellBank::compute(const cv::Mat& gray)
       cv::dft(padded, image_spectra[s], cv::DFT_COMPLEX_OUTPUT);
     }
   });
+
+  return image_spectra;
+}
+
+std::vector<std::vector<cv::Mat>> SimpleCellBank::computeOdd(const cv::Mat& gray)
+{
+  CV_Assert(gray.type() == CV_32FC1 && !gray.empty());
+  plan(gray.size());
+  for (const ScalePlan& p : plans_)
+    if (p.decimation != 1)
+      throw std::invalid_argument("SimpleCellBank::computeOdd needs min_grid_wavelength 0 (decimation 1)");
+  const std::vector<cv::Mat> image_spectra = imageSpectra(gray);
+  const int n_scales = static_cast<int>(plans_.size());
+  const int n_orient = parameters_.orientations;
+  const int n_pairs = (n_orient + 1) / 2;
+  std::vector<std::vector<cv::Mat>> out(n_scales, std::vector<cv::Mat>(n_orient));
+  cv::parallel_for_(cv::Range(0, n_scales * n_pairs), [&](const cv::Range& range) {
+    cv::Mat product, response;
+    for (int job = range.start; job < range.end; ++job)
+    {
+      const int s = job / n_pairs, pair = job % n_pairs;
+      const ScalePlan& p = plans_[s];
+      cv::mulSpectrums(image_spectra[p.spectrum_source], p.odd_pair_spectra[pair], product, 0);
+      cv::idft(product, response, cv::DFT_COMPLEX_OUTPUT | cv::DFT_SCALE);
+      const cv::Mat valid = response(cv::Rect(p.padding, p.padding, gray.cols, gray.rows));
+      cv::Mat parts[2];
+      cv::split(valid, parts);
+      out[s][2 * pair] = parts[0];
+      if (2 * pair + 1 < n_orient)
+        out[s][2 * pair + 1] = parts[1];
+    }
+  });
+  return out;
+}
+
+std::vector<ScaleResponses> SimpleCellBank::compute(const cv::Mat& gray)
+{
+  CV_Assert(gray.type() == CV_32FC1 && !gray.empty());
+  plan(gray.size());
+  const int n_scales = static_cast<int>(plans_.size());
+  const int n_orient = parameters_.orientations;
+
+  const std::vector<cv::Mat> image_spectra = imageSpectra(gray);
 
   std::vector<ScaleResponses> out(n_scales);
   for (int s = 0; s < n_scales; ++s)

@@ -33,6 +33,12 @@ public:
   /// gray: CV_32FC1 (see InputImage). Returns one ScaleResponses per wavelength, in order.
   std::vector<ScaleResponses> compute(const cv::Mat& gray);
 
+  /// Odd simple cells R^O only, for consumers that need nothing else (the stereo descriptor). Each
+  /// R^O is real, so two orientations share one complex inverse DFT (R_i + i R_j): half the work of
+  /// compute(). Requires decimation 1 at every scale (min_grid_wavelength 0): a real response needs
+  /// four samples per wavelength, not two. Returns per scale one CV_32F map per orientation.
+  std::vector<std::vector<cv::Mat>> computeOdd(const cv::Mat& gray);
+
   const GaborParameters& parameters() const { return parameters_; }
 
 private:
@@ -53,9 +59,12 @@ private:
     // Per orientation: the kernel spectrum (DFT of the flipped complex kernel, / d^2) where it is not
     // negligible, as runs along spectrum rows, each already mapped onto the folded grid.
     std::vector<std::vector<SpectrumRun>> runs;
+    // Per orientation pair (i, i+1): spectrum of odd_i + j odd_{i+1} (both real kernels), for computeOdd.
+    std::vector<cv::Mat> odd_pair_spectra;
   };
 
   void plan(const cv::Size& image_size);
+  std::vector<cv::Mat> imageSpectra(const cv::Mat& gray) const;
   static std::vector<SpectrumRun> supportRuns(const cv::Mat& spectrum, const cv::Size& grid);
 
   GaborParameters parameters_;

@@ -10,6 +10,7 @@
 #include <sensor_msgs/image_encodings.h>
 
 #include "biovision_v1/input_image.hpp"
+#include "biovision_v1/wavelength_list.hpp"
 
 namespace biovision_v1
 {
@@ -17,21 +18,6 @@ namespace enc = sensor_msgs::image_encodings;
 
 namespace
 {
-// Parses "4 8 16" (or commas) into ascending wavelengths; throws std::invalid_argument when it cannot.
-std::vector<double> parseWavelengths(const std::string& text)
-{
-  std::string s = text;
-  std::replace(s.begin(), s.end(), ',', ' ');
-  std::istringstream in(s);
-  std::vector<double> values;
-  double v;
-  while (in >> v)
-    values.push_back(v);
-  if (!in.eof() || values.empty())
-    throw std::invalid_argument("wavelengths '" + text + "' is not a list of numbers");
-  return values;
-}
-
 // Camera encodings -> what InputImage reads (BGR order for colour). Throws on encodings we cannot read.
 cv::Mat toInput(const sensor_msgs::ImageConstPtr& msg)
 {
@@ -105,7 +91,7 @@ void V1CellsNodelet::reconfigure(V1CellsConfig& config, uint32_t /*level*/)
   V1Pipeline::Parameters p;
   try
   {
-    p.gabor.wavelengths = parseWavelengths(config.wavelengths);
+    p.gabor.wavelengths = parseWavelengthList(config.wavelengths);
     p.gabor.orientations = config.orientations;
     p.gabor.sigma_per_wavelength = config.sigma_per_wavelength;
     p.gabor.aspect_ratio = config.aspect_ratio;
@@ -129,10 +115,8 @@ void V1CellsNodelet::reconfigure(V1CellsConfig& config, uint32_t /*level*/)
   catch (const std::invalid_argument& e)
   {
     // Keep the previous, valid pipeline; a rejected value never gets used.
-    NODELET_ERROR("V1 cells: rejected parameters (%s); keeping the previous ones", e.what());
+    health_.reportError(getName(), std::string("rejected parameters (keeping the previous ones): ") + e.what());
     std::lock_guard<std::mutex> lock(pipeline_mutex_);
-    last_error_ = std::string("rejected parameters: ") + e.what();
-    last_error_time_ = ros::Time::now();
     if (!pipeline_)
       pipeline_ = std::make_unique<V1Pipeline>(V1Pipeline::Parameters());
   }
@@ -153,10 +137,8 @@ void V1CellsNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
     }
     catch (const std::exception& e)  // invalid_argument, cv_bridge::Exception, cv::Exception
     {
-      last_error_ = e.what();
-      last_error_time_ = ros::Time::now();
-      NODELET_ERROR_THROTTLE(5.0, "V1 cells: dropping image %ux%u '%s' from %s: %s", msg->width, msg->height,
-                             msg->encoding.c_str(), image_sub_.getTopic().c_str(), e.what());
+      health_.reportError(getName(), "dropping image " + std::to_string(msg->width) + "x" + std::to_string(msg->height) +
+                                         " '" + msg->encoding + "' from " + image_sub_.getTopic() + ": " + e.what());
       return;
     }
     last_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -216,18 +198,11 @@ sensor_msgs::ImagePtr V1CellsNodelet::debugImage(const cv::Mat& input, const V1R
 
 void V1CellsNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
 {
+  health_.summarize(status, !image_sub_, "idle: nobody subscribes to keypoints or debug_image", "processing");
   std::lock_guard<std::mutex> lock(pipeline_mutex_);
-  const bool recent_error = !last_error_.empty() && (ros::Time::now() - last_error_time_).toSec() < 10.0;
-  if (recent_error)
-    status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, last_error_);
-  else if (!image_sub_)
-    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "idle: nobody subscribes to keypoints or debug_image");
-  else
-    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "processing");
   status.add("last processing time [ms]", last_ms_);
   status.add("last keypoints", last_keypoints_);
   status.add("last NaN/Inf pixels", last_nonfinite_);
-  status.add("last error", last_error_);
 }
 }  // namespace biovision_v1
 

@@ -15,6 +15,7 @@
 
 #include <boost/thread/recursive_mutex.hpp>
 
+#include "biovision_v1/ros/processing_health.hpp"
 #include "biovision_v1/v1_pipeline.hpp"
 
 namespace biovision_v1
@@ -50,8 +51,7 @@ private:
   std::unique_ptr<diagnostic_updater::HeaderlessTopicDiagnostic> rate_diagnostic_;
   ros::Timer diagnostics_timer_;
   double min_rate_ = 1.0, max_rate_ = 100.0;
-  std::string last_error_;
-  ros::Time last_error_time_;
+  ProcessingHealth health_;
   double last_ms_ = 0.0;
   size_t last_keypoints_ = 0;
   int last_nonfinite_ = 0;

@@ -12,7 +12,8 @@ status=0
 while read -r name cmd; do
   [[ -z "$name" || "$name" == \#* ]] && continue
   echo "bench: $name"
-  if ! eval "$cmd"; then echo "bench: $name FAILED"; status=1; fi
+  # Tools print their JSON and progress; keep both in a log, the report comes from the JSON file.
+  if ! eval "$cmd" >"$out/$name.log" 2>&1; then echo "bench: $name FAILED (see $out/$name.log)"; status=1; fi
 done < scripts/benchmarks.list
 /usr/bin/python3 scripts/bench_report.py "$out" docs/benchmarks.md || status=1
 exit $status

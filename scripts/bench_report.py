@@ -43,14 +43,32 @@ def main(folder, target):
         if "command" in data:
             lines += [f"Command: `{data.pop('command')}`", ""]
         notes = data.pop("notes", None)
+        if "scenes" in data:
+            data.pop("scenes")
+            lines += [f"Per-scene figures: `out/bench/{path.name}` (written by the same run).", ""]
+        # Entries whose values are all flat dicts (methods, ratios) become one table, a row each.
+        tables = {k: v for k, v in data.items()
+                  if isinstance(v, dict) and v and all(not isinstance(x, (dict, list)) for x in v.values())}
         rows = []
-        flatten("", data, rows)
-        lines += ["| figure | value |", "|---|---:|"]
-        for k, v in rows:
-            lines.append(f"| {k} | {format(v, '.4g') if isinstance(v, float) else v} |")
+        flatten("", {k: v for k, v in data.items() if k not in tables}, rows)
+        if rows:
+            lines += ["| figure | value |", "|---|---:|"]
+            for k, v in rows:
+                lines.append(f"| {k} | {format(v, '.4g') if isinstance(v, float) else v} |")
+            lines.append("")
+        # One table per set of columns (e.g. methods, then ratios against peers).
+        groups = {}
+        for name, v in tables.items():
+            groups.setdefault(tuple(v), []).append(name)
+        for columns, names in groups.items():
+            lines += ["| | " + " | ".join(columns) + " |", "|---|" + "---:|" * len(columns)]
+            for name in names:
+                v = tables[name]
+                cells = [format(v[c], '.4g') if isinstance(v[c], float) else str(v[c]) for c in columns]
+                lines.append(f"| {name} | " + " | ".join(cells) + " |")
+            lines.append("")
         if notes:
-            lines += ["", notes]
-        lines.append("")
+            lines += [notes, ""]
     pathlib.Path(target).write_text("\n".join(lines) + "\n")
     print(f"bench_report: wrote {target} from {len(files)} result file(s)")
     return 0

@@ -16,7 +16,7 @@ int main(int argc, char** argv)
   ros::init(argc, argv, "still_camera");
   ros::NodeHandle nh, pnh("~");
   std::string file, frame_id;
-  double rate = 10.0, hfov_deg = 43.0;
+  double rate = 10.0, hfov_deg = 43.0, baseline = 0.0;
   int width = 0, height = 0;
   pnh.param<std::string>("file", file, "");
   pnh.param<std::string>("frame_id", frame_id, "camera_optical");
@@ -24,6 +24,7 @@ int main(int argc, char** argv)
   pnh.param("width", width, 0);    // 0 = the file's size
   pnh.param("height", height, 0);
   pnh.param("horizontal_fov_deg", hfov_deg, 43.0);
+  pnh.param("baseline", baseline, 0.0);  // > 0: this is the right camera of a rectified pair [m]
   if (!(rate > 0.0 && rate <= 1000.0))
   {
     ROS_ERROR("still_camera: ~rate %.3f outside (0, 1000] Hz; using 10", rate);
@@ -53,7 +54,13 @@ int main(int argc, char** argv)
   const double cx = 0.5 * (image.cols - 1), cy = 0.5 * (image.rows - 1);
   info.K = {f, 0, cx, 0, f, cy, 0, 0, 1};
   info.R = {1, 0, 0, 0, 1, 0, 0, 0, 1};
-  info.P = {f, 0, cx, 0, 0, f, cy, 0, 0, 0, 1, 0};
+  if (!(baseline >= 0.0 && baseline < 10.0))
+  {
+    ROS_ERROR("still_camera: ~baseline %.3f outside [0, 10) m; using 0", baseline);
+    baseline = 0.0;
+  }
+  // Right camera of a rectified pair: P[3] = -fx * baseline (the ROS stereo convention).
+  info.P = {f, 0, cx, -f * baseline, 0, f, cy, 0, 0, 0, 1, 0};
 
   image_transport::ImageTransport it(nh);
   image_transport::Publisher image_pub = it.advertise("image", 1);

@@ -1,0 +1,70 @@
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "biovision_stereo/bio_bin_parameters.hpp"
+#include "biovision_stereo/cost_volume.hpp"
+#include "biovision_stereo/disparity_map.hpp"
+
+namespace biovision_v1
+{
+class SimpleCellBank;
+}
+
+namespace biovision_stereo
+{
+/// BioBin multi-scale binary stereo (thesis §4.4), coarse to fine over the levels of
+/// BioBinParameters::wavelengths:
+///  (a) left/right resized to the level and converted to CIE L*a*b*;
+///  (b) colour mask phi(m,k) = 1 where the L*a*b* SAD of left m and right m-k is among the
+///      N_th = log2(N_d) smallest of the pixel;
+///  (c) 256-bit rolling descriptors from odd simple cells of biovision_v1 (8 orientations);
+///  (d) Hamming matching cost M(m, k);  M_phi = M (1 -/+ kappa) where phi = 1/0;
+///  (e) 1-D DoG along k: M' = tau M_phi * (alpha g_s1 - beta g_s2), discrete-normalised Gaussians;
+///  (f) costs above L = fusion_level * max(M') averaged with the upsampled coarser level's final
+///      costs; iterative over-relaxed 3x3 binomial filtering that skips line/edge pixels of
+///      biovision_v1; winner-take-all, optional sub-pixel parabola and left-right check.
+/// Not thread-safe (it caches V1 filter plans per level size); use one matcher per thread.
+class BioBinMatcher
+{
+public:
+  explicit BioBinMatcher(const BioBinParameters& parameters);
+  ~BioBinMatcher();
+
+  /// left, right: rectified images of the same size and type, 8-bit BGR (or grey, taken as BGR
+  /// grey). Throws std::invalid_argument on mismatched or unusable input.
+  DisparityMap compute(const cv::Mat& left, const cv::Mat& right);
+
+  const BioBinParameters& parameters() const { return parameters_; }
+
+  /// Wall time of the stages of the last compute() [ms], summed over levels.
+  struct StageTimes
+  {
+    double prepare = 0, cells = 0, costs = 0, dog = 0, fusion = 0, spatial = 0, wta = 0, total = 0;
+  };
+  const StageTimes& lastTimes() const { return times_; }
+
+  /// Level sizes the matcher uses for an input size (finest first in parameters order).
+  cv::Size levelSize(cv::Size input, size_t level) const;
+
+  /// Steps (b)-(e) of one level: colour-masked Hamming costs after the DoG along disparity.
+  /// left/right: 8-bit BGR at the level's size. barriers: CV_8U, non-zero on left line/edge events.
+  CostVolume levelCosts(size_t level, const cv::Mat& left, const cv::Mat& right, int disparities,
+                        cv::Mat* barriers);
+
+private:
+  void fuseWithCoarser(CostVolume& costs, const CostVolume& coarser) const;
+  void spatialFilter(CostVolume& costs, const cv::Mat& barriers) const;
+  DisparityMap winnerTakeAll(const CostVolume& costs, cv::Size input, double sf) const;
+
+  BioBinParameters parameters_;
+  StageTimes times_;
+  // Per level (each caches its DFT plans for the level size): odd cells at full resolution for the
+  // descriptors, and the full quadrature bank on its exact decimated grid for the line/edge barriers.
+  std::vector<std::unique_ptr<biovision_v1::SimpleCellBank>> odd_banks_;
+  std::vector<std::unique_ptr<biovision_v1::SimpleCellBank>> barrier_banks_;
+};
+}  // namespace biovision_stereo

@@ -1,0 +1,41 @@
+#pragma once
+
+#include <vector>
+
+#include "biovision_stereo/cost_volume.hpp"
+
+namespace biovision_stereo
+{
+/// 1-D Difference-of-Gaussians along the disparity axis of a cost volume (thesis §4.4.5):
+///   out(m, k) = tau * (alpha * g_sigma1 - beta * g_sigma2) * in(m, .)   (convolution over k)
+/// with discrete Gaussians normalised to unit sum and the cost curve replicated past both ends.
+/// The narrow Gaussian is an exact FIR; a broad one (sigma >= 2) is the recursive Young & van Vliet
+/// (1995) Gaussian, O(1) per cost instead of 6 sigma taps. Both run along k over whole image rows,
+/// so the inner loops are contiguous and vectorise. applyReference() is the exact FIR of both.
+class DisparityDog
+{
+public:
+  DisparityDog(double sigma1, double sigma2, double tau, double alpha, double beta);
+
+  void apply(const CostVolume& in, CostVolume& out) const;
+  void applyReference(const CostVolume& in, CostVolume& out) const;
+
+private:
+  struct Recursive
+  {
+    bool enabled = false;
+    float b = 0.f, a1 = 0.f, a2 = 0.f, a3 = 0.f;  // w[n] = b x[n] + a1 w[n-1] + a2 w[n-2] + a3 w[n-3]
+    int pad = 0;  // replicated values added at both ends of the curve
+  };
+
+  static std::vector<float> taps(double sigma);
+  static Recursive recursive(double sigma);
+  void firAdd(const CostVolume& in, int y, const std::vector<float>& taps, float gain, std::vector<float*>& out) const;
+  void recursiveAdd(const CostVolume& in, int y, float gain, std::vector<float*>& out,
+                    std::vector<std::vector<float>>& scratch) const;
+
+  double tau_, alpha_, beta_;
+  std::vector<float> narrow_, broad_;
+  Recursive broad_recursive_;
+};
+}  // namespace biovision_stereo

@@ -1,0 +1,47 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace biovision_stereo
+{
+/// 256-bit BioBin pixel descriptor (thesis §4.4.3): for each of 8 orientations, odd simple-cell
+/// responses R^O compared with their right neighbour, bit = R(x+i) > R(x+i+1):
+///   row y:     i = -8..7 (16 bits, R at x-8..x+8)
+///   rows y-1, y+1: i = -4..3 (8 bits each, R at x-4..x+4)
+/// = 32 bits per orientation. Orientation o occupies bits [32(o%2), 32(o%2)+32) of word o/2; inside,
+/// row y is bits 16..31 (oldest comparison highest), row y-1 bits 8..15, row y+1 bits 0..7.
+/// Outside the image, responses are those of the nearest pixel (replicated border).
+struct PixelDescriptor
+{
+  std::array<std::uint64_t, 4> words{};
+  bool operator==(const PixelDescriptor& o) const { return words == o.words; }
+};
+
+/// Descriptors of a whole image, row-major.
+class PixelDescriptorImage
+{
+public:
+  PixelDescriptorImage() = default;
+  PixelDescriptorImage(int width, int height) : width_(width), height_(height), data_(size_t(width) * height) {}
+
+  /// Rolling computation: each pixel's code is the previous one shifted by one with one new
+  /// comparison appended per segment (thesis §4.4.3). odd: 8 CV_32F maps of equal size.
+  static PixelDescriptorImage compute(const std::vector<cv::Mat>& odd);
+  /// The same descriptor computed from scratch at one pixel (the reference for tests).
+  static PixelDescriptor fromScratch(const std::vector<cv::Mat>& odd, int x, int y);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  const PixelDescriptor& at(int x, int y) const { return data_[size_t(y) * width_ + x]; }
+  PixelDescriptor& at(int x, int y) { return data_[size_t(y) * width_ + x]; }
+  const PixelDescriptor* row(int y) const { return data_.data() + size_t(y) * width_; }
+
+private:
+  int width_ = 0, height_ = 0;
+  std::vector<PixelDescriptor> data_;
+};
+}  // namespace biovision_stereo

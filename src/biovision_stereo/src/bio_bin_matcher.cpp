@@ -1,0 +1,382 @@
+#include "biovision_stereo/bio_bin_matcher.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include <opencv2/core/utility.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "biovision_stereo/disparity_dog.hpp"
+#include "biovision_stereo/hamming.hpp"
+#include "biovision_stereo/pixel_descriptor.hpp"
+#include "biovision_v1/end_stopped_cells.hpp"
+#include "biovision_v1/line_edge_detector.hpp"
+#include "biovision_v1/simple_cell_bank.hpp"
+
+namespace biovision_stereo
+{
+namespace
+{
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t)
+{
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+constexpr float kMaxHamming = 256.f;
+constexpr int kNoMatchSad = 3 * 255 + 1;  // SAD of a disparity that leaves the right image
+
+cv::Mat toBgr8(const cv::Mat& in, const char* which)
+{
+  if (in.empty())
+    throw std::invalid_argument(std::string("BioBin: ") + which + " image is empty");
+  if (in.depth() != CV_8U)
+    throw std::invalid_argument(std::string("BioBin: ") + which + " image must be 8-bit");
+  cv::Mat bgr;
+  switch (in.channels())
+  {
+    case 1: cv::cvtColor(in, bgr, cv::COLOR_GRAY2BGR); break;
+    case 3: bgr = in; break;
+    case 4: cv::cvtColor(in, bgr, cv::COLOR_BGRA2BGR); break;
+    default: throw std::invalid_argument(std::string("BioBin: ") + which + " image has an unsupported channel count");
+  }
+  return bgr;
+}
+}  // namespace
+
+BioBinMatcher::BioBinMatcher(const BioBinParameters& parameters) : parameters_(parameters)
+{
+  parameters_.validate();
+  biovision_v1::GaborParameters gabor;
+  gabor.wavelengths = {parameters_.base_wavelength};
+  gabor.orientations = 8;
+  biovision_v1::GaborParameters full = gabor;
+  full.min_grid_wavelength = 0.0;  // the descriptor compares neighbouring pixels: full resolution
+  for (size_t s = 0; s < parameters_.wavelengths.size(); ++s)
+  {
+    odd_banks_.push_back(std::make_unique<biovision_v1::SimpleCellBank>(full));
+    barrier_banks_.push_back(std::make_unique<biovision_v1::SimpleCellBank>(gabor));
+  }
+}
+
+BioBinMatcher::~BioBinMatcher() = default;
+
+cv::Size BioBinMatcher::levelSize(cv::Size input, size_t level) const
+{
+  const double sf = parameters_.scaleFactor(level);
+  return cv::Size(std::max(1, static_cast<int>(std::lround(input.width / sf))),
+                  std::max(1, static_cast<int>(std::lround(input.height / sf))));
+}
+
+CostVolume BioBinMatcher::levelCosts(size_t level, const cv::Mat& left, const cv::Mat& right, int disparities,
+                                     cv::Mat* barriers)
+{
+  const cv::Size size = left.size();
+  const int w = size.width, h = size.height, nd = disparities;
+  const double sf = parameters_.scaleFactor(level);
+
+  auto t = Clock::now();
+  // (a) CIE L*a*b* (8-bit: L scaled to 0..255, a and b offset by 128).
+  cv::Mat left_lab, right_lab, left_gray, right_gray;
+  cv::cvtColor(left, left_lab, cv::COLOR_BGR2Lab);
+  cv::cvtColor(right, right_lab, cv::COLOR_BGR2Lab);
+  cv::cvtColor(left, left_gray, cv::COLOR_BGR2GRAY);
+  cv::cvtColor(right, right_gray, cv::COLOR_BGR2GRAY);
+  left_gray.convertTo(left_gray, CV_32F, 1.0 / 255.0);
+  right_gray.convertTo(right_gray, CV_32F, 1.0 / 255.0);
+
+  times_.prepare += msSince(t);
+  t = Clock::now();
+  // (c) odd simple cells -> rolling 256-bit descriptors.
+  const PixelDescriptorImage left_codes = PixelDescriptorImage::compute(odd_banks_[level]->computeOdd(left_gray)[0]);
+  const PixelDescriptorImage right_codes = PixelDescriptorImage::compute(odd_banks_[level]->computeOdd(right_gray)[0]);
+  if (barriers)
+  {
+    // Line/edge events of the left image, on the bank's exact decimated grid, back at level size.
+    const auto cells = barrier_banks_[level]->compute(left_gray);
+    const biovision_v1::EndStoppedCells end_stopped(cells[0]);
+    const cv::Mat events = biovision_v1::LineEdgeDetector().detect(cells[0], end_stopped).mask();
+    cv::Mat up;
+    cv::resize(events, up, cv::Size(events.cols * cells[0].decimation, events.rows * cells[0].decimation), 0, 0,
+               cv::INTER_NEAREST);
+    *barriers = up(cv::Rect(0, 0, w, h)).clone();
+  }
+
+  times_.cells += msSince(t);
+  t = Clock::now();
+  // (d) Hamming costs, (b) colour mask, modulation; one image row at a time, rows in parallel.
+  CostVolume costs(size, nd);
+  const int n_th = std::clamp(static_cast<int>(std::lround(std::log2(std::max(2.0, parameters_.max_disparity / sf)))),
+                              1, nd);
+  const float boost = static_cast<float>(1.0 + parameters_.kappa), damp = static_cast<float>(1.0 - parameters_.kappa);
+  // Planar L*a*b* so that the SAD below runs over contiguous bytes and vectorises.
+  cv::Mat left_planes[3], right_planes[3];
+  cv::split(left_lab, left_planes);
+  cv::split(right_lab, right_planes);
+  cv::parallel_for_(cv::Range(0, h), [&](const cv::Range& rows) {
+    std::vector<std::uint16_t> sad(size_t(nd) * w);
+    std::vector<int> threshold(w), smallest(n_th);
+    for (int y = rows.start; y < rows.end; ++y)
+    {
+      const uchar *l0 = left_planes[0].ptr(y), *l1 = left_planes[1].ptr(y), *l2 = left_planes[2].ptr(y);
+      const uchar *r0 = right_planes[0].ptr(y), *r1 = right_planes[1].ptr(y), *r2 = right_planes[2].ptr(y);
+      for (int k = 0; k < nd; ++k)
+      {
+        std::uint16_t* s = &sad[size_t(k) * w];
+        for (int x = 0; x < std::min(k, w); ++x)
+          s[x] = kNoMatchSad;
+        for (int x = k; x < w; ++x)
+          s[x] = static_cast<std::uint16_t>(std::abs(l0[x] - r0[x - k]) + std::abs(l1[x] - r1[x - k]) +
+                                            std::abs(l2[x] - r2[x - k]));
+        Hamming::row(left_codes.row(y), right_codes.row(y), w, k, kMaxHamming, costs.slice(k).ptr<float>(y));
+      }
+      // BT = the N_th smallest SAD of each pixel: a sorted list of the N_th smallest seen so far.
+      for (int x = 0; x < w; ++x)
+      {
+        int count = 0;
+        for (int k = 0; k < nd; ++k)
+        {
+          const int v = sad[size_t(k) * w + x];
+          if (count == n_th && v >= smallest[n_th - 1])
+            continue;
+          int i = count < n_th ? count++ : n_th - 1;
+          while (i > 0 && smallest[i - 1] > v)
+          {
+            smallest[i] = smallest[i - 1];
+            --i;
+          }
+          smallest[i] = v;
+        }
+        threshold[x] = smallest[count - 1];
+      }
+      // phi = 1 where SAD <= BT: M (1 - kappa); else M (1 + kappa).
+      for (int k = 0; k < nd; ++k)
+      {
+        float* c = costs.slice(k).ptr<float>(y);
+        const std::uint16_t* s = &sad[size_t(k) * w];
+        for (int x = 0; x < w; ++x)
+          c[x] *= s[x] <= threshold[x] ? damp : boost;
+      }
+    }
+  });
+
+  times_.costs += msSince(t);
+  t = Clock::now();
+  // (e) 1-D DoG along disparity.
+  CostVolume filtered;
+  DisparityDog(parameters_.sigma1 / sf, parameters_.sigma2 / sf, parameters_.tau, parameters_.alpha, parameters_.beta)
+      .apply(costs, filtered);
+  times_.dog += msSince(t);
+  return filtered;
+}
+
+void BioBinMatcher::fuseWithCoarser(CostVolume& costs, const CostVolume& coarser) const
+{
+  // Costs above L are averaged with the coarser level's final costs at the same disparity.
+  const CostVolume up = coarser.resampled(costs.size(), costs.disparities());
+  const float level = static_cast<float>(parameters_.fusion_level) * costs.max();
+  cv::Mat mask, mean;
+  for (int k = 0; k < costs.disparities(); ++k)
+  {
+    cv::Mat& c = costs.slice(k);
+    mask = c > level;
+    cv::addWeighted(c, 0.5, up.slice(k), 0.5, 0.0, mean);
+    mean.copyTo(c, mask);
+  }
+}
+
+void BioBinMatcher::spatialFilter(CostVolume& costs, const cv::Mat& barriers) const
+{
+  // M_F = M_f + r (w_s - M_f): over-relaxation towards the 3x3 binomial mean w_s of the costs,
+  // leaving out line/edge pixels. With binomial weights the averaging operator has a spectrum in
+  // [0, 1], so r in (0, 2) is stable (a box mean would diverge at r = 1.6).
+  const cv::Mat kernel = (cv::Mat_<float>(1, 3) << 0.25f, 0.5f, 0.25f);
+  const cv::Size size = costs.size();
+  cv::Mat weight(size, CV_32F, cv::Scalar(1.f));
+  if (parameters_.line_edge_barriers && !barriers.empty())
+    weight.setTo(0.f, barriers);
+  cv::Mat inv_norm;
+  cv::sepFilter2D(weight, inv_norm, CV_32F, kernel, kernel, cv::Point(-1, -1), 0, cv::BORDER_REPLICATE);
+  // Pixels with no open neighbour (inside a thick barrier) keep their costs: inverse norm 0 marks them.
+  for (int y = 0; y < size.height; ++y)
+  {
+    float* n = inv_norm.ptr<float>(y);
+    for (int x = 0; x < size.width; ++x)
+      n[x] = n[x] > 1e-6f ? 1.f / n[x] : 0.f;
+  }
+  const float r = static_cast<float>(parameters_.relaxation), th = static_cast<float>(parameters_.stable_cost);
+  const size_t total = size_t(size.area()) * costs.disparities();
+  std::vector<cv::Mat> frozen(costs.disparities());
+  for (cv::Mat& f : frozen)
+    f = cv::Mat::zeros(size, CV_8U);
+  for (int it = 0; it < parameters_.max_iterations; ++it)
+  {
+    std::atomic<size_t> changed{0};
+    cv::parallel_for_(cv::Range(0, costs.disparities()), [&](const cv::Range& ks) {
+      cv::Mat masked, mean;
+      for (int k = ks.start; k < ks.end; ++k)
+      {
+        cv::Mat& c = costs.slice(k);
+        cv::multiply(c, weight, masked);
+        cv::sepFilter2D(masked, mean, CV_32F, kernel, kernel, cv::Point(-1, -1), 0, cv::BORDER_REPLICATE);
+        size_t moved = 0;
+        for (int y = 0; y < size.height; ++y)
+        {
+          float* cr = c.ptr<float>(y);
+          const float* mr = mean.ptr<float>(y);
+          const float* nr = inv_norm.ptr<float>(y);
+          uchar* fr = frozen[k].ptr<uchar>(y);
+          // Branch-free so that it vectorises. Frozen costs and costs with no open neighbour keep
+          // their value; a cost below Th_D before and after the update is frozen from now on.
+          for (int x = 0; x < size.width; ++x)
+          {
+            const float before = cr[x];
+            const float after = before + r * (mr[x] * nr[x] - before);
+            const bool keep = fr[x] | (nr[x] == 0.f);
+            const float value = keep ? before : after;
+            fr[x] = keep | ((before < th) & (after < th));
+            moved += !keep & (std::abs(after - before) > 1e-3f);
+            cr[x] = value;
+          }
+        }
+        changed += moved;
+      }
+    });
+    if (changed < parameters_.changing_fraction * total)
+      break;
+  }
+}
+
+DisparityMap BioBinMatcher::winnerTakeAll(const CostVolume& costs, cv::Size input, double sf) const
+{
+  const cv::Size size = costs.size();
+  const int w = size.width, h = size.height, nd = costs.disparities();
+  cv::Mat left_d(size, CV_32F), right_k(size, CV_32S);
+  cv::parallel_for_(cv::Range(0, h), [&](const cv::Range& rows) {
+    std::vector<float> best_right(w);
+    for (int y = rows.start; y < rows.end; ++y)
+    {
+      std::fill(best_right.begin(), best_right.end(), HUGE_VALF);
+      int* rk = right_k.ptr<int>(y);
+      std::fill(rk, rk + w, -1);
+      for (int x = 0; x < w; ++x)
+      {
+        const int kmax = std::min(nd - 1, x);  // a disparity must stay inside the right image
+        int best = 0;
+        float best_cost = HUGE_VALF;
+        for (int k = 0; k <= kmax; ++k)
+        {
+          const float c = costs.slice(k).ptr<float>(y)[x];
+          if (c < best_cost)
+          {
+            best_cost = c;
+            best = k;
+          }
+          // Right view: the right pixel x - k sees left pixel x at disparity k.
+          if (c < best_right[x - k])
+          {
+            best_right[x - k] = c;
+            rk[x - k] = k;
+          }
+        }
+        float d = static_cast<float>(best);
+        if (parameters_.subpixel && best > 0 && best < kmax)
+        {
+          const float cm = costs.slice(best - 1).ptr<float>(y)[x], cp = costs.slice(best + 1).ptr<float>(y)[x];
+          const float den = cm - 2 * best_cost + cp;
+          if (den > 0)
+            d += std::clamp(0.5f * (cm - cp) / den, -0.5f, 0.5f);
+        }
+        left_d.ptr<float>(y)[x] = d;
+      }
+    }
+  });
+  if (parameters_.left_right_check)
+  {
+    const float tol = static_cast<float>(parameters_.left_right_tolerance / sf);
+    for (int y = 0; y < h; ++y)
+    {
+      float* d = left_d.ptr<float>(y);
+      const int* rk = right_k.ptr<int>(y);
+      for (int x = 0; x < w; ++x)
+      {
+        const int xr = x - static_cast<int>(std::lround(d[x]));
+        if (xr < 0 || xr >= w || rk[xr] < 0 || std::abs(rk[xr] - d[x]) > tol + 0.5f)
+          d[x] = DisparityMap::kInvalid;
+      }
+    }
+  }
+  DisparityMap out;
+  out.max_disparity = parameters_.max_disparity;
+  const double value_scale = double(input.width) / w;  // level disparities -> input pixels
+  cv::Mat scaled = left_d * value_scale;
+  scaled.setTo(DisparityMap::kInvalid, left_d < 0);
+  if (size == input)
+    out.disparity = scaled;
+  else
+    cv::resize(scaled, out.disparity, input, 0, 0, cv::INTER_NEAREST);
+  return out;
+}
+
+DisparityMap BioBinMatcher::compute(const cv::Mat& left_in, const cv::Mat& right_in)
+{
+  const cv::Mat left = toBgr8(left_in, "left"), right = toBgr8(right_in, "right");
+  if (left.size() != right.size())
+    throw std::invalid_argument("BioBin: left " + std::to_string(left.cols) + "x" + std::to_string(left.rows) +
+                                " and right " + std::to_string(right.cols) + "x" + std::to_string(right.rows) +
+                                " differ in size");
+  if (left_in.type() != right_in.type())
+    throw std::invalid_argument("BioBin: left and right images differ in type");
+  if (parameters_.max_disparity >= left.cols)
+    throw std::invalid_argument("BioBin: max_disparity " + std::to_string(parameters_.max_disparity) +
+                                " is not smaller than the image width " + std::to_string(left.cols));
+  const cv::Size coarsest = levelSize(left.size(), parameters_.wavelengths.size() - 1);
+  if (coarsest.width < 17 || coarsest.height < 3)
+    throw std::invalid_argument("BioBin: image " + std::to_string(left.cols) + "x" + std::to_string(left.rows) +
+                                " is smaller than the descriptor window at the coarsest level");
+
+  times_ = StageTimes();
+  const auto start = Clock::now();
+  CostVolume previous;
+  for (size_t s = parameters_.wavelengths.size(); s-- > 0;)
+  {
+    const double sf = parameters_.scaleFactor(s);
+    const cv::Size size = levelSize(left.size(), s);
+    cv::Mat l, r;
+    if (size == left.size())
+    {
+      l = left;
+      r = right;
+    }
+    else
+    {
+      cv::resize(left, l, size, 0, 0, cv::INTER_AREA);
+      cv::resize(right, r, size, 0, 0, cv::INTER_AREA);
+    }
+    const int disparities = static_cast<int>(std::ceil(parameters_.max_disparity / sf)) + 1;
+    cv::Mat barriers;
+    CostVolume costs = levelCosts(s, l, r, disparities, &barriers);
+    auto t = Clock::now();
+    if (previous.disparities() > 0)
+      fuseWithCoarser(costs, previous);
+    times_.fusion += msSince(t);
+    t = Clock::now();
+    spatialFilter(costs, barriers);
+    times_.spatial += msSince(t);
+    previous = std::move(costs);
+    if (s == 0)
+    {
+      t = Clock::now();
+      DisparityMap result = winnerTakeAll(previous, left.size(), sf);
+      times_.wta = msSince(t);
+      times_.total = msSince(start);
+      return result;
+    }
+  }
+  return DisparityMap();  // not reached: the loop ends at level 0
+}
+}  // namespace biovision_stereo

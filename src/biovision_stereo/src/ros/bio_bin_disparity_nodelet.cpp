@@ -1,0 +1,251 @@
+#include "biovision_stereo/ros/bio_bin_disparity_nodelet.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include <cv_bridge/cv_bridge.h>
+#include <image_geometry/stereo_camera_model.h>
+#include <opencv2/imgproc.hpp>
+#include <pluginlib/class_list_macros.hpp>
+#include <sensor_msgs/image_encodings.h>
+#include <stereo_msgs/DisparityImage.h>
+
+#include "biovision_v1/wavelength_list.hpp"
+
+namespace biovision_stereo
+{
+namespace enc = sensor_msgs::image_encodings;
+
+namespace
+{
+// mono8 / bgr8 / rgb8(a) / bgra8 -> what BioBinMatcher reads. Throws on anything else.
+cv::Mat toMatcherInput(const sensor_msgs::ImageConstPtr& msg, const char* which)
+{
+  const std::string& e = msg->encoding;
+  if (e != enc::MONO8 && e != enc::BGR8 && e != enc::RGB8 && e != enc::BGRA8 && e != enc::RGBA8)
+    throw std::invalid_argument(std::string(which) + " image has encoding '" + e +
+                                "'; expected mono8, bgr8, rgb8, bgra8 or rgba8 (debayer/rectify first)");
+  cv_bridge::CvImageConstPtr cv = cv_bridge::toCvShare(msg);
+  if (e == enc::RGB8 || e == enc::RGBA8)
+  {
+    cv::Mat bgr;
+    cv::cvtColor(cv->image, bgr, e == enc::RGB8 ? cv::COLOR_RGB2BGR : cv::COLOR_RGBA2BGR);
+    return bgr;
+  }
+  return cv->image;
+}
+
+void checkInfo(const sensor_msgs::CameraInfo& info, const sensor_msgs::Image& image, const char* which)
+{
+  const double fx = info.P[0];
+  if (!std::isfinite(fx) || fx <= 0.0)
+    throw std::invalid_argument(std::string(which) + " camera_info has no valid focal length (P[0] = " +
+                                std::to_string(fx) + ")");
+  for (double v : info.P)
+    if (!std::isfinite(v))
+      throw std::invalid_argument(std::string(which) + " camera_info projection matrix has NaN/Inf");
+  if (info.width != 0 && (info.width != image.width || info.height != image.height))
+    throw std::invalid_argument(std::string(which) + " camera_info is " + std::to_string(info.width) + "x" +
+                                std::to_string(info.height) + " but the image is " + std::to_string(image.width) +
+                                "x" + std::to_string(image.height));
+}
+}  // namespace
+
+BioBinDisparityNodelet::~BioBinDisparityNodelet() = default;
+
+void BioBinDisparityNodelet::onInit()
+{
+  ros::NodeHandle& nh = getNodeHandle();
+  ros::NodeHandle& pnh = getPrivateNodeHandle();
+  it_ = std::make_unique<image_transport::ImageTransport>(nh);
+  bool approximate = false;
+  pnh.param("approximate_sync", approximate, false);
+  pnh.param("use_color", use_color_, true);
+  pnh.param("queue_size", queue_size_, 5);
+  pnh.param("diagnostics_min_rate", min_rate_, 1.0);
+  pnh.param("diagnostics_max_rate", max_rate_, 60.0);
+  if (approximate)
+  {
+    approximate_sync_ = std::make_unique<message_filters::Synchronizer<ApproximatePolicy>>(
+        ApproximatePolicy(queue_size_), left_sub_, left_info_sub_, right_sub_, right_info_sub_);
+    approximate_sync_->registerCallback(&BioBinDisparityNodelet::pairCallback, this);
+  }
+  else
+  {
+    exact_sync_ = std::make_unique<message_filters::Synchronizer<ExactPolicy>>(ExactPolicy(queue_size_), left_sub_,
+                                                                              left_info_sub_, right_sub_, right_info_sub_);
+    exact_sync_->registerCallback(&BioBinDisparityNodelet::pairCallback, this);
+  }
+
+  reconfigure_server_ = std::make_unique<dynamic_reconfigure::Server<BioBinDisparityConfig>>(reconfigure_mutex_, pnh);
+  reconfigure_server_->setCallback([this](BioBinDisparityConfig& c, uint32_t level) { reconfigure(c, level); });
+
+  updater_ = std::make_unique<diagnostic_updater::Updater>(nh, pnh, getName());
+  updater_->setHardwareID("none");
+  updater_->add("BioBin disparity", this, &BioBinDisparityNodelet::diagnose);
+  rate_diagnostic_ = std::make_unique<diagnostic_updater::HeaderlessTopicDiagnostic>(
+      "disparity", *updater_, diagnostic_updater::FrequencyStatusParam(&min_rate_, &max_rate_, 0.1, 10));
+  left_sub_.registerCallback(boost::function<void(const sensor_msgs::ImageConstPtr&)>(
+      [this](const sensor_msgs::ImageConstPtr&) { ++left_images_; }));
+  last_pair_time_ = ros::WallTime::now();
+  diagnostics_timer_ = nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) {
+    // Left images keep coming but no pair for 3 s: the streams are not synchronised.
+    const unsigned left = left_images_, pairs = pairs_;
+    if (pairs != watched_pairs_)
+      last_pair_time_ = ros::WallTime::now();
+    else if (left > watched_left_ + 2 && (ros::WallTime::now() - last_pair_time_).toSec() > 3.0)
+    {
+      health_.reportError(getName(), "left images arrive but no left/right/camera_info set is synchronised for 3 s (" +
+                  std::string(approximate_sync_ ? "approximate" : "exact") + " sync; check stamps or set "
+                  "~approximate_sync)");
+    }
+    watched_left_ = left;
+    watched_pairs_ = pairs;
+    updater_->update();
+  });
+
+  std::lock_guard<std::mutex> lock(connect_mutex_);
+  auto connect = [this](const auto&) { connectCallback(); };
+  disparity_pub_ = nh.advertise<stereo_msgs::DisparityImage>("disparity", 1, ros::SubscriberStatusCallback(connect),
+                                                             ros::SubscriberStatusCallback(connect));
+  obstacle_pub_ = it_->advertise("obstacle_mask", 1, image_transport::SubscriberStatusCallback(connect),
+                                 image_transport::SubscriberStatusCallback(connect));
+}
+
+void BioBinDisparityNodelet::connectCallback()
+{
+  std::lock_guard<std::mutex> lock(connect_mutex_);
+  const bool wanted = disparity_pub_.getNumSubscribers() > 0 || obstacle_pub_.getNumSubscribers() > 0;
+  if (!wanted && subscribed_)
+  {
+    left_sub_.unsubscribe();
+    left_info_sub_.unsubscribe();
+    right_sub_.unsubscribe();
+    right_info_sub_.unsubscribe();
+    subscribed_ = false;
+  }
+  else if (wanted && !subscribed_)
+  {
+    ros::NodeHandle& nh = getNodeHandle();
+    const std::string image = use_color_ ? "image_rect_color" : "image_rect";
+    image_transport::TransportHints hints("raw", ros::TransportHints(), getPrivateNodeHandle());
+    left_sub_.subscribe(*it_, "left/" + image, 1, hints);
+    left_info_sub_.subscribe(nh, "left/camera_info", 1);
+    right_sub_.subscribe(*it_, "right/" + image, 1, hints);
+    right_info_sub_.subscribe(nh, "right/camera_info", 1);
+    subscribed_ = true;
+  }
+}
+
+void BioBinDisparityNodelet::reconfigure(BioBinDisparityConfig& config, uint32_t /*level*/)
+{
+  try
+  {
+    BioBinParameters p;
+    p.wavelengths = biovision_v1::parseWavelengthList(config.wavelengths);
+    p.max_disparity = config.max_disparity;
+    p.kappa = config.kappa;
+    p.tau = config.tau;
+    p.alpha = config.alpha;
+    p.beta = config.beta;
+    p.sigma1 = config.sigma1;
+    p.sigma2 = config.sigma2;
+    p.fusion_level = config.fusion_level;
+    p.relaxation = config.relaxation;
+    p.stable_cost = config.stable_cost;
+    p.max_iterations = config.max_iterations;
+    p.line_edge_barriers = config.line_edge_barriers;
+    p.subpixel = config.subpixel;
+    p.left_right_check = config.left_right_check;
+    p.left_right_tolerance = config.left_right_tolerance;
+    auto matcher = std::make_unique<BioBinMatcher>(p);
+    std::lock_guard<std::mutex> lock(matcher_mutex_);
+    matcher_ = std::move(matcher);
+    obstacle_distance_ = config.obstacle_distance;
+    NODELET_INFO("BioBin: wavelengths [%s], max disparity %d", config.wavelengths.c_str(), config.max_disparity);
+  }
+  catch (const std::invalid_argument& e)
+  {
+    health_.reportError(getName(), std::string("rejected parameters (keeping the previous ones): ") + e.what());
+    std::lock_guard<std::mutex> lock(matcher_mutex_);
+    if (!matcher_)
+      matcher_ = std::make_unique<BioBinMatcher>(BioBinParameters());
+  }
+}
+
+void BioBinDisparityNodelet::pairCallback(const sensor_msgs::ImageConstPtr& left,
+                                          const sensor_msgs::CameraInfoConstPtr& left_info,
+                                          const sensor_msgs::ImageConstPtr& right,
+                                          const sensor_msgs::CameraInfoConstPtr& right_info)
+{
+  ++pairs_;
+  std::lock_guard<std::mutex> lock(matcher_mutex_);
+  image_geometry::StereoCameraModel model;
+  DisparityMap result;
+  try
+  {
+    checkInfo(*left_info, *left, "left");
+    checkInfo(*right_info, *right, "right");
+    if (left->width != right->width || left->height != right->height || left->encoding != right->encoding)
+      throw std::invalid_argument("left " + std::to_string(left->width) + "x" + std::to_string(left->height) + " " +
+                                  left->encoding + " and right " + std::to_string(right->width) + "x" +
+                                  std::to_string(right->height) + " " + right->encoding + " differ");
+    model.fromCameraInfo(left_info, right_info);
+    if (!(model.baseline() > 0.0) || !std::isfinite(model.baseline()))
+      throw std::invalid_argument("camera_info gives no positive baseline (right P[3] must be -fx * T)");
+    const auto start = std::chrono::steady_clock::now();
+    result = matcher_->compute(toMatcherInput(left, "left"), toMatcherInput(right, "right"));
+    last_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
+  catch (const std::exception& e)  // invalid_argument, cv_bridge::Exception, cv::Exception
+  {
+    health_.reportError(getName(), std::string("dropping stereo pair: ") + e.what());
+    return;
+  }
+
+  auto msg = boost::make_shared<stereo_msgs::DisparityImage>();
+  msg->header = left->header;
+  msg->f = static_cast<float>(model.right().fx());
+  msg->T = static_cast<float>(model.baseline());
+  msg->min_disparity = 0.0f;
+  msg->max_disparity = static_cast<float>(result.max_disparity);
+  msg->delta_d = matcher_->parameters().subpixel ? 1.0f / 16.0f : 1.0f;
+  msg->valid_window.x_offset = 0;
+  msg->valid_window.y_offset = 0;
+  msg->valid_window.width = left->width;
+  msg->valid_window.height = left->height;
+  // Invalid pixels are below min_disparity (-1), as stereo_image_proc marks them.
+  cv_bridge::CvImage image(left->header, enc::TYPE_32FC1, result.disparity);
+  image.toImageMsg(msg->image);
+  const int valid = cv::countNonZero(result.disparity >= 0.f);
+  last_valid_fraction_ = double(valid) / std::max(1, result.disparity.rows * result.disparity.cols);
+  disparity_pub_.publish(msg);
+  rate_diagnostic_->tick();
+
+  if (obstacle_pub_.getNumSubscribers() > 0)
+  {
+    const float near = static_cast<float>(msg->f * msg->T / obstacle_distance_);
+    cv::Mat mask = result.disparity >= near;
+    obstacle_pub_.publish(cv_bridge::CvImage(left->header, enc::MONO8, mask).toImageMsg());
+  }
+}
+
+void BioBinDisparityNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
+{
+  health_.summarize(status, !subscribed_, "idle: nobody subscribes to disparity or obstacle_mask", "matching");
+  std::lock_guard<std::mutex> lock(matcher_mutex_);
+  status.add("last processing time [ms]", last_ms_);
+  status.add("last valid fraction", last_valid_fraction_);
+  if (matcher_)
+  {
+    const auto& t = matcher_->lastTimes();
+    status.add("stage ms: cells/costs/dog/fusion/spatial/wta",
+               std::to_string(t.cells) + "/" + std::to_string(t.costs) + "/" + std::to_string(t.dog) + "/" +
+                   std::to_string(t.fusion) + "/" + std::to_string(t.spatial) + "/" + std::to_string(t.wta));
+  }
+}
+}  // namespace biovision_stereo
+
+PLUGINLIB_EXPORT_CLASS(biovision_stereo::BioBinDisparityNodelet, nodelet::Nodelet)

@@ -1,0 +1,373 @@
+// Unit tests of the ROS-free BioBin core.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "biovision_stereo/bio_bin_matcher.hpp"
+#include "biovision_stereo/disparity_dog.hpp"
+#include "biovision_stereo/disparity_metrics.hpp"
+#include "biovision_stereo/hamming.hpp"
+#include "biovision_stereo/middlebury_dataset.hpp"
+#include "biovision_stereo/pixel_descriptor.hpp"
+#include "biovision_stereo/portable_float_map.hpp"
+
+using namespace biovision_stereo;
+namespace fs = std::filesystem;
+
+namespace
+{
+// Smooth random colour texture: matchable everywhere, like a real textured surface.
+cv::Mat texture(cv::Size size, unsigned seed, int blob = 3)
+{
+  cv::RNG rng(seed);
+  cv::Mat small(size.height / blob + 2, size.width / blob + 2, CV_8UC3);
+  rng.fill(small, cv::RNG::UNIFORM, 0, 256);
+  cv::Mat big;
+  cv::resize(small, big, cv::Size(small.cols * blob, small.rows * blob), 0, 0, cv::INTER_CUBIC);
+  return big(cv::Rect(0, 0, size.width, size.height)).clone();
+}
+
+std::string sharedData()
+{
+  const char* env = std::getenv("BIOVISION_SHARED");
+  return std::string(env ? env : "../shared") + "/data";
+}
+
+std::vector<cv::Mat> randomResponses(cv::Size size, unsigned seed)
+{
+  cv::RNG rng(seed);
+  std::vector<cv::Mat> odd(8);
+  for (auto& m : odd)
+  {
+    m.create(size, CV_32F);
+    rng.fill(m, cv::RNG::NORMAL, 0, 1);
+  }
+  return odd;
+}
+}  // namespace
+
+TEST(PixelDescriptor, RollingEqualsFromScratchEverywhere)
+{
+  const auto odd = randomResponses(cv::Size(37, 9), 5);
+  const PixelDescriptorImage codes = PixelDescriptorImage::compute(odd);
+  for (int y = 0; y < 9; ++y)
+    for (int x = 0; x < 37; ++x)
+      ASSERT_TRUE(codes.at(x, y) == PixelDescriptorImage::fromScratch(odd, x, y)) << "at " << x << "," << y;
+}
+
+TEST(PixelDescriptor, BitsFollowTheSamplingPattern)
+{
+  // One orientation with R increasing to the right except a single drop: only the comparisons that
+  // see the drop are 1.
+  std::vector<cv::Mat> odd(8);
+  for (auto& m : odd)
+    m = cv::Mat::zeros(5, 40, CV_32F);
+  for (int x = 0; x < 40; ++x)
+    odd[0].at<float>(2, x) = static_cast<float>(x);
+  odd[0].at<float>(2, 20) = 100.f;  // R(20) > R(21): bit for position 20 on row 2
+  const PixelDescriptor d = PixelDescriptorImage::fromScratch(odd, 20, 2);
+  // Row y segment: positions x-8..x+7, oldest highest: position 20 is index 8 -> bit 16 + (15 - 8).
+  EXPECT_EQ(d.words[0] & 0xFFFFFFFFull, 1ull << (16 + 7));
+  const PixelDescriptor above = PixelDescriptorImage::fromScratch(odd, 20, 3);  // row 2 is its y-1
+  // y-1 segment: positions x-4..x+3, position 20 is index 4 -> bit 8 + (7 - 4).
+  EXPECT_EQ(above.words[0] & 0xFFFFFFFFull, 1ull << (8 + 3));
+}
+
+TEST(Hamming, EveryPathEqualsTheScalarReference)
+{
+  std::mt19937_64 rng(11);
+  std::vector<PixelDescriptor> a(64), b(64);
+  for (size_t i = 0; i < a.size(); ++i)
+    for (int w = 0; w < 4; ++w)
+    {
+      a[i].words[w] = rng();
+      b[i].words[w] = rng();
+    }
+  a[0] = b[0];  // distance 0
+  for (int w = 0; w < 4; ++w)
+    b[1].words[w] = ~a[1].words[w];  // distance 256
+  for (size_t i = 0; i < a.size(); ++i)
+  {
+    int bits = 0;
+    for (int w = 0; w < 4; ++w)
+      for (int j = 0; j < 64; ++j)
+        bits += ((a[i].words[w] ^ b[i].words[w]) >> j) & 1;
+    EXPECT_EQ(Hamming::distanceScalar(a[i], b[i]), bits);
+    EXPECT_EQ(Hamming::distance(a[i], b[i]), bits);
+  }
+  EXPECT_EQ(Hamming::distance(a[0], b[0]), 0);
+  EXPECT_EQ(Hamming::distance(a[1], b[1]), 256);
+  std::vector<float> row(64);
+  Hamming::row(a.data(), b.data(), 64, 3, 999.f, row.data());
+  EXPECT_EQ(row[2], 999.f);
+  for (int x = 3; x < 64; ++x)
+    EXPECT_EQ(row[x], Hamming::distanceScalar(a[x], b[x - 3]));
+}
+
+TEST(DisparityDog, RecursiveBroadGaussianMatchesTheExactFir)
+{
+  CostVolume in(cv::Size(7, 3), 60);
+  cv::RNG rng(2);
+  for (int k = 0; k < 60; ++k)
+    rng.fill(in.slice(k), cv::RNG::UNIFORM, 0, 256);
+  const DisparityDog dog(1.0, 8.0, 0.4, 1.0, 0.5);
+  CostVolume fast, exact;
+  dog.apply(in, fast);
+  dog.applyReference(in, exact);
+  double worst = 0;
+  for (int k = 0; k < 60; ++k)
+    worst = std::max(worst, cv::norm(fast.slice(k), exact.slice(k), cv::NORM_INF));
+  // Stated tolerance: 1% of the cost range (0..256): the Young-van Vliet recursion approximates the
+  // sampled Gaussian (the ends are padded, so the border matches).
+  EXPECT_LT(worst, 0.01 * 256) << "max |recursive - FIR| = " << worst;
+  std::printf("DoG: max |recursive - FIR| = %.3f on costs in [0, 256]\n", worst);
+}
+
+TEST(BioBinMatcher, ShiftedTextureGivesTheExactDisparity)
+{
+  const int width = 160, height = 100;
+  for (int d : {0, 5, 12})
+  {
+    const cv::Mat wide = texture(cv::Size(width + 40, height), 3 + d);
+    const cv::Mat left = wide(cv::Rect(20, 0, width, height)).clone();
+    // left(x) = wide(20 + x), right(x) = wide(20 + d + x): left(x) = right(x - d).
+    const cv::Mat right = wide(cv::Rect(20 + d, 0, width, height)).clone();
+    BioBinParameters p;
+    p.max_disparity = 24;
+    BioBinMatcher matcher(p);
+    const cv::Mat disparity = matcher.compute(left, right).disparity;
+    // The winner is the exact integer disparity; the sub-pixel parabola stays within half a pixel.
+    int exact = 0, close = 0, n = 0;
+    for (int y = 10; y < height - 10; ++y)
+      for (int x = 40; x < width - 10; ++x)
+      {
+        const float v = disparity.at<float>(y, x);
+        ++n;
+        exact += v >= 0 && std::lround(v) == d;
+        close += std::abs(v - d) < 0.5f;
+      }
+    EXPECT_GT(exact, 0.99 * n) << "disparity " << d << ": " << exact << " of " << n << " exact";
+    EXPECT_GT(close, 0.99 * n) << "disparity " << d << ": " << close << " of " << n << " within 0.5 px";
+  }
+}
+
+TEST(BioBinMatcher, FastModeFindsTheDisparityAtQuarterSize)
+{
+  const int width = 320, height = 240, d = 16;
+  const cv::Mat wide = texture(cv::Size(width + 60, height), 9, 8);
+  const cv::Mat left = wide(cv::Rect(40, 0, width, height)).clone();
+  const cv::Mat right = wide(cv::Rect(40 + d, 0, width, height)).clone();
+  BioBinParameters p;
+  p.wavelengths = {16.0};
+  p.max_disparity = 48;
+  BioBinMatcher matcher(p);
+  const cv::Mat disparity = matcher.compute(left, right).disparity;
+  ASSERT_EQ(disparity.size(), left.size()) << "output comes back at input resolution";
+  int good = 0, n = 0;
+  for (int y = 20; y < height - 20; y += 2)
+    for (int x = 80; x < width - 20; x += 2)
+    {
+      ++n;
+      good += std::abs(disparity.at<float>(y, x) - d) <= 1.0f;
+    }
+  EXPECT_GT(good, 0.9 * n) << good << " of " << n;
+}
+
+TEST(BioBinMatcher, LeftRightCheckInvalidatesTheOccludedBand)
+{
+  // Background at disparity 4, a foreground square at disparity 14: left of the square, a band of
+  // 10 px of background is visible only in the left image and must come out invalid.
+  const int width = 200, height = 120;
+  const cv::Mat bg = texture(cv::Size(width + 40, height), 21);
+  const cv::Mat fg = texture(cv::Size(80, 60), 22, 2);
+  cv::Mat left = bg(cv::Rect(20, 0, width, height)).clone();
+  cv::Mat right = bg(cv::Rect(20 + 4, 0, width, height)).clone();
+  fg.copyTo(left(cv::Rect(100, 30, 80, 60)));
+  fg.copyTo(right(cv::Rect(100 - 14, 30, 80, 60)));
+  BioBinParameters p;
+  p.max_disparity = 24;
+  BioBinMatcher matcher(p);
+  const cv::Mat disparity = matcher.compute(left, right).disparity;
+  int invalid = 0, n = 0;
+  for (int y = 40; y < 80; ++y)
+    for (int x = 91; x < 99; ++x)
+    {
+      ++n;
+      invalid += disparity.at<float>(y, x) < 0;
+    }
+  EXPECT_GT(invalid, 0.5 * n) << "occluded band: " << invalid << " of " << n << " invalid";
+  // The square itself is found.
+  int square = 0, m = 0;
+  for (int y = 45; y < 75; ++y)
+    for (int x = 115; x < 170; ++x)
+    {
+      ++m;
+      square += std::abs(disparity.at<float>(y, x) - 14) <= 1.0f;
+    }
+  EXPECT_GT(square, 0.9 * m);
+}
+
+TEST(BioBinMatcher, RejectsBadInputClearly)
+{
+  BioBinParameters p;
+  p.max_disparity = 32;
+  BioBinMatcher matcher(p);
+  const cv::Mat a(100, 120, CV_8UC3, cv::Scalar::all(80));
+  EXPECT_THROW(matcher.compute(a, cv::Mat(100, 110, CV_8UC3)), std::invalid_argument);    // sizes
+  EXPECT_THROW(matcher.compute(a, cv::Mat(100, 120, CV_8UC1)), std::invalid_argument);    // types
+  EXPECT_THROW(matcher.compute(cv::Mat(), a), std::invalid_argument);                     // empty
+  EXPECT_THROW(matcher.compute(cv::Mat(100, 120, CV_16UC3), cv::Mat(100, 120, CV_16UC3)), std::invalid_argument);
+  EXPECT_THROW(matcher.compute(cv::Mat(100, 30, CV_8UC3), cv::Mat(100, 30, CV_8UC3)), std::invalid_argument);  // md >= width
+  EXPECT_THROW(matcher.compute(cv::Mat(8, 120, CV_8UC3), cv::Mat(8, 120, CV_8UC3)), std::invalid_argument);    // tiny
+  BioBinParameters bad;
+  bad.wavelengths = {8, 4};
+  EXPECT_THROW(BioBinMatcher{bad}, std::invalid_argument);
+  bad = BioBinParameters();
+  bad.relaxation = 2.0;
+  EXPECT_THROW(BioBinMatcher{bad}, std::invalid_argument);
+  // Grey input is accepted (taken as colourless BGR).
+  const cv::Mat g = texture(cv::Size(120, 100), 4);
+  cv::Mat grey;
+  cv::cvtColor(g, grey, cv::COLOR_BGR2GRAY);
+  EXPECT_NO_THROW(matcher.compute(grey, grey));
+}
+
+TEST(DisparityMetrics, HandMadeGroundTruth)
+{
+  cv::Mat gt = (cv::Mat_<float>(2, 4) << 10, 10, 10, 0,  // last pixel unknown
+                20, 20, 20, 20);
+  cv::Mat d = (cv::Mat_<float>(2, 4) << 10.2f, 10.7f, 11.5f, 3, 25, -1, 19.1f, 20);
+  DisparityMetrics m = DisparityMetrics::compute(d, gt);
+  ASSERT_EQ(m.pixels, 7);
+  // errors: 0.2, 0.7, 1.5, 5, invalid, 0.9, 0
+  EXPECT_NEAR(m.bad05, 100.0 * 5 / 7, 1e-9);  // 0.7 1.5 5 inv 0.9
+  EXPECT_NEAR(m.bad1, 100.0 * 3 / 7, 1e-9);   // 1.5 5 inv
+  EXPECT_NEAR(m.bad2, 100.0 * 2 / 7, 1e-9);   // 5 inv
+  EXPECT_NEAR(m.bad4, 100.0 * 2 / 7, 1e-9);   // 5 inv
+  EXPECT_NEAR(m.invalid, 100.0 / 7, 1e-9);
+  EXPECT_NEAR(m.avgerr, (0.2 + 0.7 + 1.5 + 5 + 0.9 + 0) / 6, 1e-5);
+  cv::Mat mask = (cv::Mat_<uchar>(2, 4) << 255, 0, 0, 0, 0, 0, 0, 255);
+  m = DisparityMetrics::compute(d, gt, mask);
+  EXPECT_EQ(m.pixels, 2);
+  EXPECT_NEAR(m.bad05, 0.0, 1e-9);
+}
+
+TEST(PortableFloatMap, ReadsHandWrittenFilesAsStored)
+{
+  // A 3x2 little-endian file with scale -0.5 (not +-1: OpenCV 4.6 would divide by it), rows bottom
+  // to top, one infinite (unknown) value.
+  const fs::path dir = fs::temp_directory_path() / "biovision_pfm_test";
+  fs::create_directories(dir);
+  const float bottom[3] = {4.f, 5.f, 6.f}, top[3] = {1.f, 2.f, INFINITY};
+  {
+    std::ofstream f(dir / "le.pfm", std::ios::binary);
+    f << "Pf\n3  2\n-0.5\n";  // extra blank in the size line
+    f.write(reinterpret_cast<const char*>(bottom), sizeof bottom);
+    f.write(reinterpret_cast<const char*>(top), sizeof top);
+  }
+  cv::Mat m = PortableFloatMap::read((dir / "le.pfm").string());
+  ASSERT_EQ(m.size(), cv::Size(3, 2));
+  EXPECT_EQ(m.at<float>(0, 0), 1.f);
+  EXPECT_EQ(m.at<float>(0, 1), 2.f);
+  EXPECT_TRUE(std::isinf(m.at<float>(0, 2)));
+  EXPECT_EQ(m.at<float>(1, 2), 6.f);
+  // Big endian (positive scale 2.0): bytes swapped on disk, values still as stored.
+  {
+    std::ofstream f(dir / "be.pfm", std::ios::binary);
+    f << "Pf\n1 1\n2.0\n";
+    const float v = 7.25f;
+    unsigned char b[4];
+    std::memcpy(b, &v, 4);
+    const unsigned char swapped[4] = {b[3], b[2], b[1], b[0]};
+    f.write(reinterpret_cast<const char*>(swapped), 4);
+  }
+  EXPECT_EQ(PortableFloatMap::read((dir / "be.pfm").string()).at<float>(0, 0), 7.25f);
+  // Round trip through the writer in both byte orders.
+  cv::Mat r(4, 5, CV_32F);
+  cv::randu(r, -100, 100);
+  for (float scale : {-1.f, 1.f})
+  {
+    PortableFloatMap::write((dir / "rt.pfm").string(), r, scale);
+    EXPECT_EQ(cv::norm(PortableFloatMap::read((dir / "rt.pfm").string()), r, cv::NORM_INF), 0.0);
+  }
+  // Truncated and foreign files are refused with the file named.
+  {
+    std::ofstream f(dir / "short.pfm", std::ios::binary);
+    f << "Pf\n10 10\n-1\n";
+    f.write(reinterpret_cast<const char*>(bottom), sizeof bottom);
+  }
+  EXPECT_THROW(PortableFloatMap::read((dir / "short.pfm").string()), std::runtime_error);
+  {
+    std::ofstream f(dir / "p6.pfm");
+    f << "P6\n1 1\n255\nabc";
+  }
+  EXPECT_THROW(PortableFloatMap::read((dir / "p6.pfm").string()), std::runtime_error);
+  fs::remove_all(dir);
+}
+
+TEST(MiddleburyDataset, CalibToleratesWhitespace)
+{
+  const fs::path dir = fs::temp_directory_path() / "biovision_calib_test";
+  fs::create_directories(dir);
+  {
+    std::ofstream f(dir / "calib.txt");
+    f << "cam0=[1 0 0; 0 1 0; 0 0 1]\n  ndisp = 290 \r\nvmin=0\n";
+  }
+  EXPECT_EQ(MiddleburyDataset::readCalibNdisp((dir / "calib.txt").string()), 290);
+  {
+    std::ofstream f(dir / "calib.txt");
+    f << "width=10\n";
+  }
+  EXPECT_THROW(MiddleburyDataset::readCalibNdisp((dir / "calib.txt").string()), std::runtime_error);
+  fs::remove_all(dir);
+}
+
+TEST(MiddleburyDataset, LoadsTheSharedLayouts)
+{
+  const std::string root = sharedData() + "/stereo";
+  ASSERT_TRUE(fs::is_directory(root)) << "../shared/data/stereo not found (set BIOVISION_SHARED)";
+  const StereoScene cones = MiddleburyDataset::loadScene(root + "/middlebury-v2-masks/cones");
+  EXPECT_EQ(cones.layout, "v2-masks");
+  EXPECT_EQ(cones.max_disparity, 59);
+  EXPECT_FALSE(cones.nonoccluded.empty());
+  double mx;
+  cv::minMaxLoc(cones.ground_truth, nullptr, &mx);
+  EXPECT_GT(mx, 50.0);  // groundtruth.png / 4: 55 at most; 59 is the search range of info.txt
+  EXPECT_LE(mx, 59.0);
+  const StereoScene art = MiddleburyDataset::loadScene(root + "/middlebury-2001-2006/Art");
+  EXPECT_EQ(art.layout, "2005-2006");
+  ASSERT_FALSE(art.nonoccluded.empty());
+  const double nonocc = cv::countNonZero(art.nonoccluded) / double(art.left.total());
+  EXPECT_GT(nonocc, 0.6);  // derived from disp1/disp5: most pixels are visible in both views
+  EXPECT_LT(nonocc, 0.98);
+  const auto all = MiddleburyDataset::load(root + "/middlebury-2001-2006");
+  EXPECT_EQ(all.size(), 35u);
+}
+
+TEST(BioBinMatcher, BeatsBlockMatchingOnRealCones)
+{
+  // A real Middlebury scene (Scharstein & Szeliski 2003): the multi-scale model must be well inside
+  // the error of a plain block matcher's typical range (measured: 9.7% bad 1.0 vs 22.6% for StereoBM).
+  const std::string dir = sharedData() + "/stereo/middlebury-v2-masks/cones";
+  ASSERT_TRUE(fs::is_directory(dir)) << dir << " not found (set BIOVISION_SHARED)";
+  const StereoScene s = MiddleburyDataset::loadScene(dir);
+  BioBinParameters p;
+  p.max_disparity = s.max_disparity;
+  BioBinMatcher matcher(p);
+  const DisparityMetrics m = DisparityMetrics::compute(matcher.compute(s.left, s.right).disparity, s.ground_truth,
+                                                       s.nonoccluded);
+  EXPECT_LT(m.bad1, 13.0) << "bad 1.0 on cones";
+  EXPECT_LT(m.avgerr, 2.5);
+}
+
+int main(int argc, char** argv)
+{
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}

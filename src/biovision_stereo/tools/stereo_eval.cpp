@@ -1,0 +1,311 @@
+// stereo_eval: BioBin and the stereo matchers a user would otherwise pick, on Middlebury scenes with
+// ground truth, in the same run with the same search range and thread count.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core/utility.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/stereo.hpp>
+
+#include "biovision_stereo/bio_bin_matcher.hpp"
+#include "biovision_stereo/disparity_metrics.hpp"
+#include "biovision_stereo/middlebury_dataset.hpp"
+
+using namespace biovision_stereo;
+
+namespace
+{
+const char* kUsage =
+    "usage: stereo_eval --dataset DIR [--json FILE] [--methods LIST] [--threads N] [--scenes LIST]\n"
+    "                   [--repeats N]\n"
+    "  DIR: one Middlebury scene or a folder of scenes (v3 im0/im1/calib.txt/disp0GT.pfm, v2 quartet,\n"
+    "       2001-2006 layouts; see MiddleburyDataset).\n"
+    "  methods (default all): biobin, biobin_fast (one scale, lambda 16), bm, bm_fast (StereoBM on the\n"
+    "       quarter-size pair, the fast mode's resolution), sgbm (MODE_SGBM_3WAY), binary_sgbm (contrib).\n"
+    "  Metrics on the non-occluded mask when there is one: bad0.5/1/2/4 (%, invalid = bad), avgerr over\n"
+    "  valid estimates, invalid %, seconds per pair (median of --repeats runs after one warm-up).\n";
+
+using Matcher = std::function<cv::Mat(const StereoScene&)>;  // returns CV_32F disparity, < 0 invalid
+
+cv::Mat fromFixedPoint(const cv::Mat& d16, float scale_to_input)
+{
+  cv::Mat d;
+  d16.convertTo(d, CV_32F, scale_to_input / 16.0);
+  d.setTo(-1.f, d16 < 0);
+  return d;
+}
+
+int multipleOf16(int md)
+{
+  return (md + 1 + 15) / 16 * 16;  // disparities 0..md inclusive
+}
+
+cv::Mat grey(const cv::Mat& bgr)
+{
+  cv::Mat g;
+  cv::cvtColor(bgr, g, cv::COLOR_BGR2GRAY);
+  return g;
+}
+
+std::map<std::string, Matcher> makeMatchers(std::map<std::string, std::unique_ptr<BioBinMatcher>>& keep)
+{
+  std::map<std::string, Matcher> m;
+  m["biobin"] = [&keep](const StereoScene& s) {
+    auto& matcher = keep["biobin:" + s.name];
+    if (!matcher)
+    {
+      BioBinParameters p;
+      p.max_disparity = s.max_disparity;
+      matcher = std::make_unique<BioBinMatcher>(p);
+    }
+    return matcher->compute(s.left, s.right).disparity;
+  };
+  m["biobin_fast"] = [&keep](const StereoScene& s) {
+    auto& matcher = keep["biobin_fast:" + s.name];
+    if (!matcher)
+    {
+      BioBinParameters p;
+      p.max_disparity = s.max_disparity;
+      p.wavelengths = {16.0};
+      matcher = std::make_unique<BioBinMatcher>(p);
+    }
+    return matcher->compute(s.left, s.right).disparity;
+  };
+  m["bm"] = [](const StereoScene& s) {
+    auto bm = cv::StereoBM::create(multipleOf16(s.max_disparity), 15);
+    cv::Mat d16;
+    bm->compute(grey(s.left), grey(s.right), d16);
+    return fromFixedPoint(d16, 1.f);
+  };
+  m["bm_fast"] = [](const StereoScene& s) {
+    cv::Mat l, r;
+    const cv::Size q(std::max(1, s.left.cols / 4), std::max(1, s.left.rows / 4));
+    cv::resize(grey(s.left), l, q, 0, 0, cv::INTER_AREA);
+    cv::resize(grey(s.right), r, q, 0, 0, cv::INTER_AREA);
+    auto bm = cv::StereoBM::create(multipleOf16((s.max_disparity + 3) / 4), 7);
+    cv::Mat d16, up;
+    bm->compute(l, r, d16);
+    cv::resize(fromFixedPoint(d16, float(s.left.cols) / q.width), up, s.left.size(), 0, 0, cv::INTER_NEAREST);
+    return up;
+  };
+  m["sgbm"] = [](const StereoScene& s) {
+    const int block = 5;
+    auto sgbm = cv::StereoSGBM::create(0, multipleOf16(s.max_disparity), block, 8 * 3 * block * block,
+                                       32 * 3 * block * block, 1, 63, 10, 100, 32, cv::StereoSGBM::MODE_SGBM_3WAY);
+    cv::Mat d16;
+    sgbm->compute(s.left, s.right, d16);
+    return fromFixedPoint(d16, 1.f);
+  };
+  m["binary_sgbm"] = [](const StereoScene& s) {
+    auto sgbm = cv::stereo::StereoBinarySGBM::create(0, multipleOf16(s.max_disparity), 9, 100, 1000, 1, 0, 5, 400, 200,
+                                                     cv::stereo::StereoBinarySGBM::MODE_SGBM);
+    sgbm->setBinaryKernelType(cv::stereo::CV_MODIFIED_CENSUS_TRANSFORM);
+    sgbm->setSpekleRemovalTechnique(cv::stereo::CV_SPECKLE_REMOVAL_AVG_ALGORITHM);
+    sgbm->setSubPixelInterpolationMethod(cv::stereo::CV_SIMETRICV_INTERPOLATION);
+    cv::Mat d;
+    sgbm->compute(grey(s.left), grey(s.right), d);
+    if (d.type() == CV_16S)
+      return fromFixedPoint(d, 1.f);
+    cv::Mat f;
+    d.convertTo(f, CV_32F);
+    return f;
+  };
+  return m;
+}
+
+std::vector<std::string> split(const std::string& s)
+{
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  std::string item;
+  while (std::getline(in, item, ','))
+    if (!item.empty())
+      out.push_back(item);
+  return out;
+}
+
+std::string metricsJson(const DisparityMetrics& m, double seconds)
+{
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "{\"bad0.5\": %.3f, \"bad1.0\": %.3f, \"bad2.0\": %.3f, \"bad4.0\": %.3f, \"avgerr\": %.4f, "
+                "\"invalid\": %.3f, \"seconds_per_pair\": %.5f}",
+                m.bad05, m.bad1, m.bad2, m.bad4, m.avgerr, m.invalid, seconds);
+  return buf;
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  std::string dataset, json_path;
+  std::vector<std::string> methods = {"biobin", "biobin_fast", "bm", "bm_fast", "sgbm", "binary_sgbm"};
+  std::vector<std::string> only_scenes;
+  int threads = 2, repeats = 3;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc)
+      {
+        std::cerr << "stereo_eval: " << a << " needs a value\n" << kUsage;
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    if (a == "--help" || a == "-h")
+    {
+      std::cout << kUsage;
+      return 0;
+    }
+    else if (a == "--dataset")
+      dataset = value();
+    else if (a == "--json")
+      json_path = value();
+    else if (a == "--methods")
+      methods = split(value());
+    else if (a == "--threads")
+      threads = std::stoi(value());
+    else if (a == "--scenes")
+      only_scenes = split(value());
+    else if (a == "--repeats")
+      repeats = std::max(1, std::stoi(value()));
+    else
+    {
+      std::cerr << "stereo_eval: unknown argument " << a << "\n" << kUsage;
+      return 2;
+    }
+  }
+  if (dataset.empty())
+  {
+    std::cerr << kUsage;
+    return 2;
+  }
+  cv::setNumThreads(threads);
+  std::vector<StereoScene> scenes;
+  try
+  {
+    scenes = MiddleburyDataset::load(dataset);
+  }
+  catch (const std::exception& e)
+  {
+    std::cerr << "stereo_eval: " << e.what() << "\n";
+    return 2;
+  }
+  if (!only_scenes.empty())
+    scenes.erase(std::remove_if(scenes.begin(), scenes.end(),
+                                [&](const StereoScene& s) {
+                                  return std::find(only_scenes.begin(), only_scenes.end(), s.name) == only_scenes.end();
+                                }),
+                 scenes.end());
+  std::map<std::string, std::unique_ptr<BioBinMatcher>> keep;
+  const auto matchers = makeMatchers(keep);
+  for (const auto& m : methods)
+    if (!matchers.count(m))
+    {
+      std::cerr << "stereo_eval: unknown method " << m << "\n" << kUsage;
+      return 2;
+    }
+
+  std::map<std::string, std::vector<DisparityMetrics>> per_method;
+  std::map<std::string, std::vector<double>> seconds;
+  std::ostringstream scenes_json;
+  scenes_json << "{";
+  for (size_t si = 0; si < scenes.size(); ++si)
+  {
+    const StereoScene& s = scenes[si];
+    if (s.ground_truth.empty())
+    {
+      std::cerr << "stereo_eval: " << s.name << " has no ground truth, skipped\n";
+      continue;
+    }
+    scenes_json << (si ? ", " : "") << "\"" << s.name << "\": {\"size\": [" << s.left.cols << ", " << s.left.rows
+                << "], \"max_disparity\": " << s.max_disparity;
+    for (const auto& name : methods)
+    {
+      const Matcher& match = matchers.at(name);
+      cv::Mat d = match(s);  // warm-up (plans, tables)
+      std::vector<double> t;
+      for (int r = 0; r < repeats; ++r)
+      {
+        const auto start = std::chrono::steady_clock::now();
+        d = match(s);
+        t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      }
+      std::nth_element(t.begin(), t.begin() + t.size() / 2, t.end());
+      const double sec = t[t.size() / 2];
+      const DisparityMetrics m = DisparityMetrics::compute(d, s.ground_truth, s.nonoccluded);
+      per_method[name].push_back(m);
+      seconds[name].push_back(sec);
+      scenes_json << ", \"" << name << "\": " << metricsJson(m, sec);
+      std::fprintf(stderr, "%-12s %-12s bad1.0 %6.2f%%  bad2.0 %6.2f%%  invalid %5.1f%%  avgerr %.3f  %.4f s\n",
+                   s.name.c_str(), name.c_str(), m.bad1, m.bad2, m.invalid, m.avgerr, sec);
+    }
+    scenes_json << "}";
+  }
+  scenes_json << "}";
+
+  std::ostringstream out;
+  std::string command = "rosrun biovision_stereo stereo_eval";
+  for (int i = 1; i < argc; ++i)
+    command += std::string(" ") + (std::string(argv[i]).find(".json") != std::string::npos ? "FILE" : argv[i]);
+  out << "{\n  \"command\": \"" << command << "\",\n  \"dataset\": \"" << dataset << "\",\n  \"threads\": " << threads << ",\n  \"scenes_evaluated\": "
+      << (per_method.empty() ? 0 : per_method.begin()->second.size()) << ",\n";
+  std::map<std::string, DisparityMetrics> means;
+  std::map<std::string, double> mean_seconds;
+  for (const auto& name : methods)
+  {
+    const auto& ms = per_method[name];
+    DisparityMetrics mean;
+    double sec = 0;
+    for (size_t i = 0; i < ms.size(); ++i)
+    {
+      mean.bad05 += ms[i].bad05 / ms.size();
+      mean.bad1 += ms[i].bad1 / ms.size();
+      mean.bad2 += ms[i].bad2 / ms.size();
+      mean.bad4 += ms[i].bad4 / ms.size();
+      mean.avgerr += ms[i].avgerr / ms.size();
+      mean.invalid += ms[i].invalid / ms.size();
+      sec += seconds[name][i] / ms.size();
+    }
+    out << "  \"" << name << "\": " << metricsJson(mean, sec) << ",\n";
+    means[name] = mean;
+    mean_seconds[name] = sec;
+  }
+  // Ratios against the peers, same run: time (ours / peer, < 1 = faster) and bad 1.0 (ours / peer).
+  auto ratio = [&](const std::string& ours, const std::string& peer) {
+    if (!means.count(ours) || !means.count(peer) || mean_seconds[peer] <= 0 || means[peer].bad1 <= 0)
+      return;
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "{\"time\": %.3f, \"bad1.0\": %.3f}", mean_seconds[ours] / mean_seconds[peer],
+                  means[ours].bad1 / means[peer].bad1);
+    out << "  \"ratio_" << ours << "_vs_" << peer << "\": " << buf << ",\n";
+  };
+  out << "  \"notes\": \"Ratios: ours / peer, same run (time < 1 = faster, bad1.0 < 1 = fewer errors). Data: "
+         "Middlebury (Scharstein & Szeliski 2002/2003, Scharstein & Pal 2007, Hirschmueller & Scharstein 2007).\",\n";
+  ratio("biobin", "sgbm");
+  ratio("biobin", "binary_sgbm");
+  ratio("biobin_fast", "bm_fast");
+  ratio("biobin_fast", "bm");
+  out << "  \"scenes\": " << scenes_json.str() << "\n}\n";
+  std::cout << out.str();
+  if (!json_path.empty())
+  {
+    std::ofstream f(json_path);
+    f << out.str();
+    if (!f)
+    {
+      std::cerr << "stereo_eval: cannot write " << json_path << "\n";
+      return 1;
+    }
+  }
+  return 0;
+}

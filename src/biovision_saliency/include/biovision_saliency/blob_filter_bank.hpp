@@ -1,0 +1,29 @@
+#pragma once
+
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace biovision_saliency
+{
+/// Band-pass Difference-of-Gaussians blob detector (sigma- = 2 sigma+) at several scales.
+/// conspicuity(map) = sum over scales of [DoG * map]^+; because the DoG is DC-free, the same filtering
+/// of the map's complement (1 - map, or -map) is exactly [DoG * map]^-, so one filtering gives a map
+/// and its complement: `positiveAndNegative`.
+class BlobFilterBank
+{
+public:
+  /// sigmas: centre sigmas sigma+ in working-resolution pixels.
+  explicit BlobFilterBank(std::vector<double> sigmas);
+
+  /// Sum over scales of the rectified DoG responses: (on, off) = ([.]^+, [.]^-). map: CV_32F.
+  void positiveAndNegative(const cv::Mat& map, cv::Mat& on, cv::Mat& off) const;
+  /// Sum over scales of [DoG * map]^+.
+  cv::Mat positive(const cv::Mat& map) const;
+
+  const std::vector<double>& sigmas() const { return sigmas_; }
+
+private:
+  std::vector<double> sigmas_;
+};
+}  // namespace biovision_saliency

@@ -1,0 +1,74 @@
+#pragma once
+
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include <biovision_saliency/SaliencyConfig.h>
+#include <boost/thread/recursive_mutex.hpp>
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <diagnostic_updater/publisher.h>
+#include <dynamic_reconfigure/server.h>
+#include <image_transport/image_transport.h>
+#include <nodelet/nodelet.h>
+#include <ros/ros.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/JointState.h>
+#include <std_srvs/Trigger.h>
+#include <stereo_msgs/DisparityImage.h>
+
+#include "biovision_saliency/saliency_pipeline.hpp"
+#include "biovision_v1/ros/processing_health.hpp"
+
+namespace biovision_saliency
+{
+/// ROS wrapper of SaliencyPipeline. Processes every `image` (the left camera) with the latest
+/// `disparity`, `joint_states` and `camera_info` when they are recent; each of those is optional and
+/// the map degrades to the channels it has. Publishes `saliency/map` (32FC1, working resolution),
+/// `saliency/thresholded` (mono8) and `saliency/regions` (FoA order); subscribes only while one of them
+/// has a subscriber. Service `saliency/reset_inhibition` clears the IoR memory.
+class SaliencyNodelet : public nodelet::Nodelet
+{
+private:
+  void onInit() override;
+  void connectCallback();
+  void imageCallback(const sensor_msgs::ImageConstPtr& msg);
+  void disparityCallback(const stereo_msgs::DisparityImageConstPtr& msg);
+  void jointCallback(const sensor_msgs::JointStateConstPtr& msg);
+  void infoCallback(const sensor_msgs::CameraInfoConstPtr& msg);
+  bool resetInhibition(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+  void reconfigure(SaliencyConfig& config, uint32_t level);
+  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
+
+  std::unique_ptr<image_transport::ImageTransport> it_;
+  image_transport::Subscriber image_sub_;
+  ros::Subscriber disparity_sub_, joint_sub_, info_sub_;
+  image_transport::Publisher map_pub_, thresholded_pub_;
+  ros::Publisher regions_pub_;
+  ros::ServiceServer reset_srv_;
+  std::mutex connect_mutex_;
+
+  std::mutex state_mutex_;  // pipeline and the latest optional inputs
+  std::unique_ptr<SaliencyPipeline> pipeline_;
+  stereo_msgs::DisparityImageConstPtr disparity_;
+  sensor_msgs::CameraInfoConstPtr info_;
+  double pan_ = 0.0, tilt_ = 0.0;
+  ros::Time joints_stamp_;
+  std::string pan_joint_ = "head_pan_joint", tilt_joint_ = "head_tilt_joint";
+  double max_input_age_ = 0.5;
+  ros::Time last_image_stamp_;
+
+  std::unique_ptr<dynamic_reconfigure::Server<SaliencyConfig>> reconfigure_server_;
+  boost::recursive_mutex reconfigure_mutex_;  // dynamic_reconfigure::Server takes a boost mutex
+  std::unique_ptr<diagnostic_updater::Updater> updater_;
+  std::unique_ptr<diagnostic_updater::HeaderlessTopicDiagnostic> rate_diagnostic_;
+  ros::Timer diagnostics_timer_;
+  double min_rate_ = 1.0, max_rate_ = 100.0;
+  biovision_v1::ProcessingHealth health_;
+  double last_ms_ = 0.0;
+  size_t last_regions_ = 0;
+  std::string last_channels_;
+};
+}  // namespace biovision_saliency

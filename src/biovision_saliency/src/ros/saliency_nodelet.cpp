@@ -1,0 +1,248 @@
+#include "biovision_saliency/ros/saliency_nodelet.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <biovision_msgs/SalientRegionArray.h>
+#include <cv_bridge/cv_bridge.h>
+#include <opencv2/imgproc.hpp>
+#include <pluginlib/class_list_macros.hpp>
+#include <sensor_msgs/image_encodings.h>
+
+namespace biovision_saliency
+{
+namespace enc = sensor_msgs::image_encodings;
+
+void SaliencyNodelet::onInit()
+{
+  ros::NodeHandle& nh = getNodeHandle();
+  ros::NodeHandle& pnh = getPrivateNodeHandle();
+  it_ = std::make_unique<image_transport::ImageTransport>(nh);
+  pnh.param("pan_joint", pan_joint_, pan_joint_);
+  pnh.param("tilt_joint", tilt_joint_, tilt_joint_);
+  pnh.param("max_input_age", max_input_age_, 0.5);
+  pnh.param("diagnostics_min_rate", min_rate_, 1.0);
+  pnh.param("diagnostics_max_rate", max_rate_, 100.0);
+
+  reconfigure_server_ = std::make_unique<dynamic_reconfigure::Server<SaliencyConfig>>(reconfigure_mutex_, pnh);
+  reconfigure_server_->setCallback([this](SaliencyConfig& c, uint32_t level) { reconfigure(c, level); });
+
+  updater_ = std::make_unique<diagnostic_updater::Updater>(nh, pnh, getName());
+  updater_->setHardwareID("none");
+  updater_->add("Saliency", this, &SaliencyNodelet::diagnose);
+  rate_diagnostic_ = std::make_unique<diagnostic_updater::HeaderlessTopicDiagnostic>(
+      "saliency/regions", *updater_, diagnostic_updater::FrequencyStatusParam(&min_rate_, &max_rate_, 0.1, 10));
+  diagnostics_timer_ = nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { updater_->update(); });
+  reset_srv_ = nh.advertiseService("saliency/reset_inhibition", &SaliencyNodelet::resetInhibition, this);
+
+  std::lock_guard<std::mutex> lock(connect_mutex_);
+  auto connect = [this](const auto&) { connectCallback(); };
+  regions_pub_ = nh.advertise<biovision_msgs::SalientRegionArray>(
+      "saliency/regions", 5, ros::SubscriberStatusCallback(connect), ros::SubscriberStatusCallback(connect));
+  map_pub_ = it_->advertise("saliency/map", 1, image_transport::SubscriberStatusCallback(connect),
+                            image_transport::SubscriberStatusCallback(connect));
+  thresholded_pub_ = it_->advertise("saliency/thresholded", 1, image_transport::SubscriberStatusCallback(connect),
+                                    image_transport::SubscriberStatusCallback(connect));
+}
+
+void SaliencyNodelet::connectCallback()
+{
+  std::lock_guard<std::mutex> lock(connect_mutex_);
+  const bool wanted = regions_pub_.getNumSubscribers() > 0 || map_pub_.getNumSubscribers() > 0 ||
+                      thresholded_pub_.getNumSubscribers() > 0;
+  ros::NodeHandle& nh = getNodeHandle();
+  if (!wanted && image_sub_)
+  {
+    image_sub_.shutdown();
+    disparity_sub_.shutdown();
+    joint_sub_.shutdown();
+    info_sub_.shutdown();
+  }
+  else if (wanted && !image_sub_)
+  {
+    image_transport::TransportHints hints("raw", ros::TransportHints(), getPrivateNodeHandle());
+    image_sub_ = it_->subscribe("image", 2, &SaliencyNodelet::imageCallback, this, hints);
+    disparity_sub_ = nh.subscribe("disparity", 2, &SaliencyNodelet::disparityCallback, this);
+    joint_sub_ = nh.subscribe("joint_states", 20, &SaliencyNodelet::jointCallback, this);
+    info_sub_ = nh.subscribe("camera_info", 2, &SaliencyNodelet::infoCallback, this);
+  }
+}
+
+void SaliencyNodelet::reconfigure(SaliencyConfig& c, uint32_t /*level*/)
+{
+  SaliencyParameters p;
+  p.working_width = c.working_width;
+  p.colour_weight = c.colour_weight;
+  p.disparity_weight = c.disparity_weight;
+  p.motion_weight = c.motion_weight;
+  p.final_blur = c.final_blur;
+  p.preferred_disparity_mode = c.preferred_disparity_mode;
+  p.near_fraction = c.near_fraction;
+  p.preferred_disparity = c.preferred_disparity;
+  p.preferred_width = c.preferred_width;
+  p.use_dis_flow = c.use_dis_flow;
+  p.compensate_ego_motion = c.compensate_ego_motion;
+  p.threshold = c.threshold;
+  p.min_saliency = c.min_saliency;
+  p.min_area = c.min_area;
+  p.margin = c.margin;
+  p.max_regions = c.max_regions;
+  p.ior_radius = c.ior_radius;
+  p.ior_decay_time = c.ior_decay_time;
+  p.attend_period = c.attend_period;
+  try
+  {
+    auto pipeline = std::make_unique<SaliencyPipeline>(p);
+    std::lock_guard<std::mutex> lock(state_mutex_);
+    pipeline_ = std::move(pipeline);
+  }
+  catch (const std::invalid_argument& e)
+  {
+    health_.reportError(getName(), std::string("rejected parameters (keeping the previous ones): ") + e.what());
+    std::lock_guard<std::mutex> lock(state_mutex_);
+    if (!pipeline_)
+      pipeline_ = std::make_unique<SaliencyPipeline>(SaliencyParameters());
+  }
+}
+
+void SaliencyNodelet::disparityCallback(const stereo_msgs::DisparityImageConstPtr& msg)
+{
+  std::lock_guard<std::mutex> lock(state_mutex_);
+  disparity_ = msg;
+}
+
+void SaliencyNodelet::infoCallback(const sensor_msgs::CameraInfoConstPtr& msg)
+{
+  std::lock_guard<std::mutex> lock(state_mutex_);
+  info_ = msg;
+}
+
+void SaliencyNodelet::jointCallback(const sensor_msgs::JointStateConstPtr& msg)
+{
+  std::lock_guard<std::mutex> lock(state_mutex_);
+  for (size_t i = 0; i < msg->name.size() && i < msg->position.size(); ++i)
+  {
+    if (!std::isfinite(msg->position[i]))
+      continue;
+    if (msg->name[i] == pan_joint_)
+      pan_ = msg->position[i];
+    else if (msg->name[i] == tilt_joint_)
+      tilt_ = msg->position[i];
+    else
+      continue;
+    joints_stamp_ = msg->header.stamp;
+  }
+}
+
+bool SaliencyNodelet::resetInhibition(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res)
+{
+  std::lock_guard<std::mutex> lock(state_mutex_);
+  pipeline_->inhibitionOfReturn().reset();
+  res.success = true;
+  res.message = "inhibition-of-return memory cleared";
+  return true;
+}
+
+void SaliencyNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
+{
+  const auto start = std::chrono::steady_clock::now();
+  std::lock_guard<std::mutex> lock(state_mutex_);
+  SaliencyResult result;
+  try
+  {
+    if (!last_image_stamp_.isZero() && msg->header.stamp < last_image_stamp_)
+    {
+      pipeline_->reset();  // time went backwards (bag loop): motion and IoR restart
+      NODELET_WARN_THROTTLE(5.0, "saliency: image stamps went backwards; restarting motion and IoR");
+    }
+    last_image_stamp_ = msg->header.stamp;
+    const std::string& e = msg->encoding;
+    cv::Mat image;
+    if (e == enc::BGR8 || e == enc::MONO8)
+      image = cv_bridge::toCvShare(msg)->image;
+    else if (e == enc::RGB8 || e == enc::RGBA8 || e == enc::BGRA8)
+      image = cv_bridge::toCvShare(msg, enc::BGR8)->image;
+    else
+      throw std::invalid_argument("image encoding '" + e + "' is not mono8/bgr8/rgb8(a)/bgra8");
+
+    // Optional inputs: used only when they are recent relative to this image.
+    cv::Mat disparity;
+    std::string channels = "colour";
+    if (disparity_)
+    {
+      const double age = std::abs((msg->header.stamp - disparity_->header.stamp).toSec());
+      if (age <= max_input_age_)
+      {
+        disparity = cv_bridge::toCvShare(disparity_->image, disparity_)->image.clone();
+        disparity.setTo(-1.f, disparity < disparity_->min_disparity);  // stereo_image_proc's invalid marking
+        channels += "+disparity";
+      }
+      else
+        NODELET_WARN_THROTTLE(5.0, "saliency: disparity is %.2f s away from the image; colour and motion only", age);
+    }
+    HeadDirection head;
+    if (!joints_stamp_.isZero())
+    {
+      head.pan = pan_;
+      head.tilt = tilt_;
+    }
+    if (info_ && info_->P[0] > 0 && std::isfinite(info_->P[0]) && info_->width == msg->width)
+    {
+      head.focal = info_->P[0];
+      head.principal = cv::Point2d(info_->P[2], info_->P[6]);
+    }
+    result = pipeline_->process(image, disparity, head, msg->header.stamp.toSec());
+    if (!result.motion.empty())
+      channels += "+motion";
+    last_channels_ = channels;
+  }
+  catch (const std::exception& ex)
+  {
+    health_.reportError(getName(), "dropping image " + std::to_string(msg->width) + "x" +
+                                       std::to_string(msg->height) + " '" + msg->encoding + "': " + ex.what());
+    return;
+  }
+  last_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  last_regions_ = result.regions.size();
+
+  auto regions = boost::make_shared<biovision_msgs::SalientRegionArray>();
+  regions->header = msg->header;
+  regions->image_width = msg->width;
+  regions->image_height = msg->height;
+  for (size_t i = 0; i < result.regions.size(); ++i)
+  {
+    const SalientRegion& r = result.regions[i];
+    biovision_msgs::SalientRegion m;
+    m.rank = static_cast<uint32_t>(i);
+    m.box.x_offset = r.box.x;
+    m.box.y_offset = r.box.y;
+    m.box.width = r.box.width;
+    m.box.height = r.box.height;
+    m.peak_saliency = r.peak;
+    m.mean_saliency = r.mean;
+    m.area = static_cast<uint32_t>(r.area);
+    m.pan = r.pan;
+    m.tilt = r.tilt;
+    m.inhibition = r.inhibition;
+    regions->regions.push_back(m);
+  }
+  regions_pub_.publish(regions);
+  rate_diagnostic_->tick();
+  if (map_pub_.getNumSubscribers() > 0)
+    map_pub_.publish(cv_bridge::CvImage(msg->header, enc::TYPE_32FC1, result.map).toImageMsg());
+  if (thresholded_pub_.getNumSubscribers() > 0)
+    thresholded_pub_.publish(cv_bridge::CvImage(msg->header, enc::MONO8, result.thresholded).toImageMsg());
+}
+
+void SaliencyNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
+{
+  health_.summarize(status, !image_sub_, "idle: nobody subscribes to saliency outputs", "processing");
+  std::lock_guard<std::mutex> lock(state_mutex_);
+  status.add("last processing time [ms]", last_ms_);
+  status.add("last regions", last_regions_);
+  status.add("channels in use", last_channels_);
+}
+}  // namespace biovision_saliency
+
+PLUGINLIB_EXPORT_CLASS(biovision_saliency::SaliencyNodelet, nodelet::Nodelet)

@@ -29,7 +29,7 @@ PACKAGES=(
   # real images for the demo that need no ../shared (/usr/share/doc/opencv-doc/examples/data)
   opencv-doc
   # libraries the ROS-free cores use
-  libopencv-dev libopencv-contrib-dev libeigen3-dev liblinear-dev
+  libopencv-dev libopencv-contrib-dev libeigen3-dev liblinear-dev libyaml-cpp-dev
   # tests and benchmarks
   googletest libgtest-dev libbenchmark-dev valgrind
 )

@@ -1,0 +1,242 @@
+// Unit tests of the ROS-free simulator core.
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "biovision_sim/differential_drive.hpp"
+#include "biovision_sim/kinematic_chain.hpp"
+#include "biovision_sim/scene_renderer.hpp"
+#include "biovision_sim/servo.hpp"
+#include "biovision_sim/world.hpp"
+
+using namespace biovision_sim;
+
+namespace
+{
+// Optical frame (z forward, x right, y down) looking along world +x from `position`.
+Eigen::Isometry3d lookingAlongX(const Eigen::Vector3d& position)
+{
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  t.translation() = position;
+  return t;
+}
+
+World wallWorld(double distance)
+{
+  World w = World::parse("name: test\nfloor: {size: 2}\n");
+  Texture::Spec noise;
+  noise.type = "noise";
+  noise.colour_a = {40, 40, 40};
+  noise.colour_b = {220, 220, 220};
+  noise.period = 1.0;
+  noise.feature = 0.02;
+  World::Object wall;
+  wall.label = "wall";
+  wall.shape = "box";
+  wall.position = Eigen::Vector3d(distance + 0.05, 0, 1.0);
+  wall.size = Eigen::Vector3d(0.1, 8, 4);
+  wall.texture = w.addTexture(noise);
+  w.addObject(wall);
+  return w;
+}
+}  // namespace
+
+TEST(SceneRenderer, FrontoParallelPlaneGivesTheAnalyticDisparity)
+{
+  const double baseline = 0.12;
+  for (double z : {1.0, 2.5})
+  {
+    const World w = wallWorld(z);
+    const SceneRenderer r(w, 2);
+    const PinholeCamera cam = PinholeCamera::fromFieldOfView(320, 240, 43 * M_PI / 180);
+    cv::Mat img, depth;
+    r.render(lookingAlongX({0, 0, 1.0}), cam, img, depth);
+    const double expected = cam.fx * baseline / z;
+    int checked = 0;
+    for (int y = 20; y < 220; y += 10)
+      for (int x = 20; x < 300; x += 10)
+      {
+        const double d = cam.fx * baseline / depth.at<float>(y, x);
+        EXPECT_NEAR(d, expected, 0.5) << "at " << x << "," << y;
+        ++checked;
+      }
+    EXPECT_GT(checked, 500);
+    // Textured, not blank.
+    cv::Scalar mean, sd;
+    cv::meanStdDev(img, mean, sd);
+    EXPECT_GT(sd[0], 20.0);
+  }
+}
+
+TEST(SceneRenderer, RightViewIsTheLeftShiftedByTheDisparity)
+{
+  // Rendering the right camera 0.12 m to the right shifts the wall by f B / Z pixels.
+  const double z = 2.0, baseline = 0.12;
+  const World w = wallWorld(z);
+  const SceneRenderer r(w, 2);
+  const PinholeCamera cam = PinholeCamera::fromFieldOfView(320, 240, 43 * M_PI / 180);
+  cv::Mat left, right, depth;
+  const Eigen::Isometry3d pose = lookingAlongX({0, 0, 1.0});
+  r.render(pose, cam, left, depth);
+  r.render(pose * Eigen::Translation3d(baseline, 0, 0), cam, right, depth);
+  const int d = static_cast<int>(std::lround(cam.fx * baseline / z));
+  const cv::Mat a = left(cv::Rect(60 + d, 40, 150, 150)), b = right(cv::Rect(60, 40, 150, 150));
+  cv::Mat diff;
+  cv::absdiff(a, b, diff);
+  EXPECT_LT(cv::mean(diff)[0], 6.0) << "left(x) != right(x - d)";
+  cv::absdiff(left(cv::Rect(60, 40, 150, 150)), b, diff);
+  EXPECT_GT(cv::mean(diff)[0], 10.0) << "texture too flat for the check";
+}
+
+TEST(SceneRenderer, BackgroundHasInfiniteDepth)
+{
+  const World w = World::parse("floor: {size: 1}\n");
+  const SceneRenderer r(w, 1);
+  const PinholeCamera cam = PinholeCamera::fromFieldOfView(64, 48, 1.0);
+  cv::Mat img, depth;
+  r.render(lookingAlongX({-5, 0, 1.0}), cam, img, depth);  // looking over the small floor
+  EXPECT_TRUE(std::isinf(depth.at<float>(0, 32)));
+  EXPECT_EQ(img.at<cv::Vec3b>(0, 32), w.background());
+}
+
+TEST(Servo, ReachesTheTargetWithinTheSpeedBoundAndStaysInsideTheLimits)
+{
+  Servo pan(-M_PI / 2, M_PI / 2, 3.0);
+  EXPECT_FALSE(pan.command(1.2));
+  double t = 0;
+  while (std::abs(pan.position() - 1.2) > 1e-9 && t < 10)
+  {
+    const double before = pan.position();
+    pan.step(0.02);
+    EXPECT_LE(std::abs(pan.position() - before), 3.0 * 0.02 + 1e-12);
+    t += 0.02;
+  }
+  EXPECT_NEAR(t, 1.2 / 3.0, 0.021);
+  // Random commands, far beyond the limits, and NaN: never outside.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> any(-10, 10);
+  for (int i = 0; i < 2000; ++i)
+  {
+    pan.command(i % 97 == 0 ? NAN : any(rng));
+    pan.step(0.02);
+    ASSERT_GE(pan.position(), -M_PI / 2);
+    ASSERT_LE(pan.position(), M_PI / 2);
+  }
+  EXPECT_TRUE(pan.command(5.0));  // clamped
+  EXPECT_DOUBLE_EQ(pan.target(), M_PI / 2);
+}
+
+TEST(DifferentialDrive, IntegrationMatchesTheKinematicModel)
+{
+  const World empty = World::parse("floor: {size: 100}\n");
+  DifferentialDrive::Limits lim;
+  lim.linear_accel = 1e9;  // ideal speeds, to compare with the closed form
+  lim.angular_accel = 1e9;
+  DifferentialDrive base(lim);
+  const double v = 0.5, w = 0.4;
+  base.command(v, w);
+  const double T = 3.0, dt = 0.02;
+  for (double t = 0; t < T - 1e-9; t += dt)
+    base.step(dt, empty);
+  // Closed form of the circular arc.
+  EXPECT_NEAR(base.x(), v / w * std::sin(w * T), 1e-6);
+  EXPECT_NEAR(base.y(), v / w * (1 - std::cos(w * T)), 1e-6);
+  EXPECT_NEAR(base.yaw(), w * T, 1e-9);
+  // Limits clamp commands; NaN stops.
+  base.command(10, 100);
+  base.step(dt, empty);
+  EXPECT_LE(base.linear(), lim.max_linear);
+  EXPECT_LE(base.angular(), lim.max_angular);
+  base.command(NAN, 0);
+  base.step(dt, empty);
+  EXPECT_EQ(base.linear(), 0.0);
+}
+
+TEST(DifferentialDrive, AccelerationIsLimited)
+{
+  const World empty = World::parse("floor: {size: 100}\n");
+  DifferentialDrive base{DifferentialDrive::Limits()};
+  base.command(1.0, 0);
+  base.step(0.1, empty);
+  EXPECT_NEAR(base.linear(), 0.03, 1e-9);  // 0.3 m/s^2 for 0.1 s
+}
+
+TEST(DifferentialDrive, CollisionStopsTheBase)
+{
+  const World w = wallWorld(2.0);  // wall face at x = 2.0
+  DifferentialDrive base{DifferentialDrive::Limits()};
+  base.command(0.5, 0);
+  bool collided = false;
+  for (int i = 0; i < 2000 && !collided; ++i)
+    collided = base.step(0.02, w);
+  ASSERT_TRUE(collided);
+  EXPECT_EQ(base.collidedWith(), "wall");
+  EXPECT_LE(base.x(), 2.0 - base.limits().radius + 1e-6);
+  EXPECT_EQ(base.linear(), 0.0);
+  const double x = base.x();
+  base.step(0.02, w);  // stays stopped
+  EXPECT_EQ(base.x(), x);
+}
+
+TEST(KinematicChain, ComposesOriginsAndJoints)
+{
+  KinematicChain chain;
+  KinematicChain::Link mast;
+  mast.origin.translation() << 0, 0, 1.0;
+  chain.append(mast);
+  KinematicChain::Link pan;
+  pan.joint = "pan";
+  pan.axis = Eigen::Vector3d::UnitZ();
+  chain.append(pan);
+  KinematicChain::Link camera;
+  camera.origin.translation() << 0.1, 0, 0;
+  chain.append(camera);
+  const Eigen::Isometry3d t = chain.evaluate({"pan"}, {M_PI / 2});
+  EXPECT_NEAR(t.translation().x(), 0.0, 1e-12);
+  EXPECT_NEAR(t.translation().y(), 0.1, 1e-12);
+  EXPECT_NEAR(t.translation().z(), 1.0, 1e-12);
+}
+
+TEST(World, BadFilesNameTheLine)
+{
+  auto message = [](const std::string& yaml) {
+    try
+    {
+      World::parse(yaml, "w.yaml");
+    }
+    catch (const std::runtime_error& e)
+    {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message("objects:\n  - {label: a, shape: sphere}\n").find("w.yaml:2"), std::string::npos);
+  EXPECT_NE(message("objects:\n  - {shape: box}\n").find("label"), std::string::npos);
+  EXPECT_NE(message("objects:\n  - {label: a, position: [1, 2]}\n").find("w.yaml:2"), std::string::npos);
+  EXPECT_NE(message("floor: {texture: {type: marble}}\n").find("marble"), std::string::npos);
+  EXPECT_NE(message("objects: [\n").find("YAML syntax"), std::string::npos);
+  EXPECT_NE(message("objects:\n  - {label: a, size: [1, 0, 1]}\n").find("positive"), std::string::npos);
+  EXPECT_EQ(message("objects:\n  - {label: a, shape: cylinder, radius: 0.1, height: 0.3}\n"), "no error");
+}
+
+TEST(World, ShippedWorldsLoad)
+{
+  for (const char* f : {"tabletop.yaml", "corridor.yaml"})
+  {
+    const World w = World::load(std::string(BIOVISION_WORLDS_DIR) + "/" + f);
+    EXPECT_GE(w.objects().size(), 5u) << f;
+  }
+  const World table = World::load(std::string(BIOVISION_WORLDS_DIR) + "/tabletop.yaml");
+  int lookalikes = 0;
+  for (const auto& o : table.objects())
+    lookalikes += o.label.rfind("mug_red", 0) == 0;
+  EXPECT_EQ(lookalikes, 2);
+}
+
+int main(int argc, char** argv)
+{
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}

@@ -333,8 +333,10 @@ int main(int argc, char** argv)
       right_pub.publish(cv_bridge::CvImage(rh, "bgr8", right).toImageMsg());
       auto li = cameraInfo(camera, 0.0, lh.frame_id);
       li.header = lh;
-      auto ri = cameraInfo(camera, baseline, lh.frame_id);  // rectified pair: P of the right in the left frame
-      ri.header = rh;
+      // A rectified pair shares the left frame in camera_info (image_geometry's StereoCameraModel,
+      // and so stereo_image_proc, require equal frame ids); the right image keeps its own frame.
+      auto ri = cameraInfo(camera, baseline, lh.frame_id);
+      ri.header = lh;
       left_info_pub.publish(li);
       right_info_pub.publish(ri);
       if (depth_pub.getNumSubscribers() > 0)

@@ -68,7 +68,7 @@ public:
     return c;
   }
 
-  void publishPair(double fx = kFx)
+  void publishPair(double fx = kFx, const std::string& right_info_frame = "stereo_left_optical")
   {
     const ros::Time stamp = ros::Time::now();
     std_msgs::Header h;
@@ -80,16 +80,18 @@ public:
     left_pub_.publish(cv_bridge::CvImage(h, "bgr8", left).toImageMsg());
     right_pub_.publish(cv_bridge::CvImage(h, "bgr8", right).toImageMsg());
     left_info_pub_.publish(info(stamp, false, fx));
-    right_info_pub_.publish(info(stamp, true, fx));
+    auto ri = info(stamp, true, fx);
+    ri.header.frame_id = right_info_frame;
+    right_info_pub_.publish(ri);
   }
 
   template <typename Pred>
-  bool publishUntil(Pred pred, double seconds, double fx = kFx)
+  bool publishUntil(Pred pred, double seconds, double fx = kFx, const std::string& right_info_frame = "stereo_left_optical")
   {
     const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(seconds);
     while (ros::ok() && ros::WallTime::now() < end)
     {
-      publishPair(fx);
+      publishPair(fx, right_info_frame);
       ros::WallDuration(0.2).sleep();
       if (pred())
         return true;
@@ -163,6 +165,15 @@ TEST_F(BioBinDisparityNodeTest, BadCameraInfoIsReportedAndTheNodeKeepsWorking)
     std::lock_guard<std::mutex> lock(mutex_);
     return bool(disparity_);
   }, 30.0));
+  // The right camera_info in its own frame (image_geometry would abort on it): still disparity.
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    disparity_.reset();
+  }
+  EXPECT_TRUE(publishUntil([&] {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return bool(disparity_);
+  }, 30.0, kFx, "stereo_right_optical")) << "no disparity when the right camera_info uses its own frame";
 }
 }  // namespace
 

@@ -192,7 +192,18 @@ void BioBinDisparityNodelet::pairCallback(const sensor_msgs::ImageConstPtr& left
       throw std::invalid_argument("left " + std::to_string(left->width) + "x" + std::to_string(left->height) + " " +
                                   left->encoding + " and right " + std::to_string(right->width) + "x" +
                                   std::to_string(right->height) + " " + right->encoding + " differ");
-    model.fromCameraInfo(left_info, right_info);
+    // image_geometry asserts (aborts) when the two frame ids differ; drivers disagree on that
+    // convention, and only fx and the baseline are used here, so give the right info the left frame.
+    if (right_info->header.frame_id != left_info->header.frame_id)
+    {
+      sensor_msgs::CameraInfo right_in_left = *right_info;
+      right_in_left.header.frame_id = left_info->header.frame_id;
+      model.fromCameraInfo(*left_info, right_in_left);
+      NODELET_WARN_THROTTLE(30.0, "BioBin: right camera_info frame '%s' differs from the left's '%s'; using the left's",
+                            right_info->header.frame_id.c_str(), left_info->header.frame_id.c_str());
+    }
+    else
+      model.fromCameraInfo(left_info, right_info);
     if (!(model.baseline() > 0.0) || !std::isfinite(model.baseline()))
       throw std::invalid_argument("camera_info gives no positive baseline (right P[3] must be -fx * T)");
     const auto start = std::chrono::steady_clock::now();

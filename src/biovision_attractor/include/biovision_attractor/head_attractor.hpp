@@ -1,0 +1,76 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "biovision_attractor/head_attractor_parameters.hpp"
+
+namespace biovision_attractor
+{
+/// A salient thing seen this frame, as the head controller needs it.
+struct SeenRegion
+{
+  double pan = 0.0;    ///< head-centred direction of its peak [rad, + = left]
+  double tilt = 0.0;   ///< [rad, + = down]
+  double peak = 0.0;   ///< saliency [0, 1]
+  double area = 0.0;   ///< [px^2]
+};
+
+/// Attractor dynamics for the head's pan (thesis §4.7), read so that it does what the thesis describes
+/// (see the package README for each reading):
+///  rate = gain * ( sum_i alpha_a * d_i * w_i * exp(-d_i^2/eps_a)  -  sum_i alpha_r * d_i * s_i * exp(-d_i^2/eps_r) )
+///  d_i = direction_i - pan, direction_i = where the section's strongest region was seen (its centre
+///  when nothing was: beyond the thesis, which attracts to section centres, 20 deg apart);  w_i = softmax weight of the section's saliency (0 when not salient);
+///  s_i = exp((Ar_max - Ar_i)/beta_r) - 1, the section's repulsion, growing while the head dwells there;
+/// plus permanent repellers just outside +-90 deg (the walls). Behaviours change the forcelets:
+/// explore (as above), track (only the tracked direction attracts; no repulsion), look_ahead (a periodic
+/// attractor at 0 deg), hold (rate 0). The selected attractor gets a persistence bonus, which breaks
+/// ties between equal targets and stops dithering between near-equal ones. Beyond the thesis, a target
+/// the head fixates habituates (its attraction fades over habituation_time and recovers when it is not
+/// fixated): with the thesis' spatial boredom alone, a head between two sections alternates boredom
+/// between them and never leaves (measured on two targets at +-15 deg).
+class HeadAttractor
+{
+public:
+  enum class Behaviour
+  {
+    kExplore,
+    kTrack,
+    kLookAhead,
+    kHold
+  };
+
+  struct Output
+  {
+    double rate = 0.0;            ///< [rad/s] after limits
+    double command = 0.0;         ///< pan position command [rad], inside the limits
+    double target = 0.0;          ///< angle the dynamics head for (the dominant attractor), NaN if none
+    bool saccade = false;         ///< the command jumps straight to the target
+    std::vector<double> attraction, repulsion, forcelet;  ///< per section
+  };
+
+  explicit HeadAttractor(const HeadAttractorParameters& parameters);
+
+  /// One control step at time t [s] with the head at `pan` [rad]; `regions` are this frame's (may be
+  /// empty). dt: time since the previous step [s].
+  Output update(const std::vector<SeenRegion>& regions, double pan, double t, double dt, double half_fov);
+
+  void setBehaviour(Behaviour b, double track_angle = 0.0);
+  Behaviour behaviour() const { return behaviour_; }
+  static bool parseBehaviour(const std::string& name, Behaviour& out);
+  static const char* name(Behaviour b);
+  const HeadAttractorParameters& parameters() const { return p_; }
+  std::vector<double> sectionAngles() const;
+
+private:
+  HeadAttractorParameters p_;
+  Behaviour behaviour_ = Behaviour::kExplore;
+  double track_angle_ = 0.0;
+  std::vector<double> saliency_;   // A_s (remembered for out-of-view sections)
+  std::vector<double> direction_;  // where in each section its strongest region was seen [rad]
+  std::vector<double> repulsion_;  // A_r in [0, 1]; 1 = no repulsion
+  double last_salient_time_ = -1e300;
+  int selected_ = -1;  // the attractor the head is going to (kept while it stays competitive)
+  std::vector<double> habituation_;  // per section, 0..0.9: how much a fixated target has lost its pull
+};
+}  // namespace biovision_attractor

@@ -11,6 +11,7 @@ HeadAttractor::HeadAttractor(const HeadAttractorParameters& parameters)
 {
   p_.validate();
   direction_ = sectionAngles();
+  tilt_.assign(p_.sections, p_.default_tilt);
   habituation_.assign(p_.sections, 0.0);
 }
 
@@ -58,8 +59,9 @@ const char* HeadAttractor::name(Behaviour b)
 }
 
 HeadAttractor::Output HeadAttractor::update(const std::vector<SeenRegion>& regions, double pan_in, double t, double dt,
-                                            double half_fov)
+                                            double half_fov, double tilt_in)
 {
+  const double tilt = std::isfinite(tilt_in) ? std::clamp(tilt_in, p_.tilt_lower, p_.tilt_upper) : p_.default_tilt;
   const int n = p_.sections;
   const double pan = std::isfinite(pan_in) ? std::clamp(pan_in, p_.pan_lower, p_.pan_upper) : 0.0;
   dt = std::isfinite(dt) ? std::clamp(dt, 0.0, 1.0) : 0.0;
@@ -67,7 +69,7 @@ HeadAttractor::Output HeadAttractor::update(const std::vector<SeenRegion>& regio
   out.target = std::numeric_limits<double>::quiet_NaN();
 
   // Attraction A_s: in-view sections take this frame's strongest region; the others fade.
-  std::vector<double> seen(n, 0.0), seen_at = direction_;
+  std::vector<double> seen(n, 0.0), seen_at = direction_, seen_tilt = tilt_;
   for (const SeenRegion& r : regions)
     if (std::isfinite(r.pan) && std::isfinite(r.peak) && r.peak > 0)
     {
@@ -76,6 +78,8 @@ HeadAttractor::Output HeadAttractor::update(const std::vector<SeenRegion>& regio
       {
         seen[i] = std::min(1.0, r.peak);
         seen_at[i] = std::clamp(r.pan, p_.pan_lower, p_.pan_upper);
+        if (std::isfinite(r.tilt))
+          seen_tilt[i] = std::clamp(r.tilt, p_.tilt_lower, p_.tilt_upper);
       }
     }
   const double fade = std::exp(-p_.memory_decay * dt);
@@ -91,9 +95,15 @@ HeadAttractor::Output HeadAttractor::update(const std::vector<SeenRegion>& regio
     const double before = saliency_[i];
     saliency_[i] = p_.smoothing * before + (1 - p_.smoothing) * seen[i];
     if (seen[i] > 0)
+    {
       direction_[i] = before > 0 ? p_.smoothing * direction_[i] + (1 - p_.smoothing) * seen_at[i] : seen_at[i];
+      tilt_[i] = before > 0 ? p_.smoothing * tilt_[i] + (1 - p_.smoothing) * seen_tilt[i] : seen_tilt[i];
+    }
     else if (saliency_[i] < p_.min_saliency)
+    {
       direction_[i] = angle;
+      tilt_[i] = p_.default_tilt;
+    }
   }
 
   // Repulsion A_r (1 = none): the section the head looks at grows more repulsive every frame, the
@@ -218,6 +228,17 @@ HeadAttractor::Output HeadAttractor::update(const std::vector<SeenRegion>& regio
       out.saccade = true;
     }
   }
+  // Tilt: the same attractor form towards the selected target's tilt, else the default tilt.
+  out.tilt_target = p_.default_tilt;
+  if (p_.tilt_dynamics && dominant >= 0 && behaviour_ != Behaviour::kLookAhead)
+    out.tilt_target = tilt_[dominant];
+  if (behaviour_ == Behaviour::kHold)
+    out.tilt_target = tilt;
+  const double dt_tilt = out.tilt_target - tilt;
+  double tilt_rate = p_.gain * p_.alpha_attraction * dt_tilt * std::exp(-dt_tilt * dt_tilt / p_.epsilon_attraction);
+  tilt_rate = std::isfinite(tilt_rate) ? std::clamp(tilt_rate, -p_.max_rate, p_.max_rate) : 0.0;
+  out.tilt_rate = tilt_rate;
+  out.tilt_command = std::clamp(tilt + tilt_rate * dt, p_.tilt_lower, p_.tilt_upper);
   out.attraction = attraction;
   out.repulsion = repulsion;
   return out;

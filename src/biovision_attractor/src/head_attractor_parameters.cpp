@@ -32,6 +32,8 @@ void HeadAttractorParameters::validate() const
     fail("need look_ahead_period > 0 and 0 <= look_ahead_duration <= look_ahead_period");
   if (!(pan_lower < pan_upper))
     fail("pan_lower must be < pan_upper");
+  if (!(tilt_lower < tilt_upper) || !(default_tilt >= tilt_lower && default_tilt <= tilt_upper))
+    fail("need tilt_lower < tilt_upper and default_tilt between them");
 }
 
 int HeadAttractorParameters::sectionOf(double angle) const

@@ -43,7 +43,8 @@ public:
     pnh_.param("min_region_area", min_area_, 200.0);
     pnh_.param("control_rate", control_rate_, 10.0);
     pnh_.param("joint_state_timeout", joint_timeout_, 0.5);
-    pnh_.param("tilt", tilt_command_, 0.3);
+    pnh_.param("tilt", p.default_tilt, p.default_tilt);
+    pnh_.param("tilt_dynamics", p.tilt_dynamics, p.tilt_dynamics);
     pnh_.param("horizontal_fov", half_fov_, 0.7505);
     half_fov_ /= 2;
     std::string mode;
@@ -58,7 +59,11 @@ public:
         p.pan_upper = j->limits->upper;
       }
       if (auto j = model.getJoint("head_tilt_joint"); j && j->limits)
-        tilt_command_ = std::clamp(tilt_command_, j->limits->lower, j->limits->upper);
+      {
+        p.tilt_lower = j->limits->lower;
+        p.tilt_upper = j->limits->upper;
+        p.default_tilt = std::clamp(p.default_tilt, p.tilt_lower, p.tilt_upper);
+      }
     }
     attractor_ = std::make_unique<HeadAttractor>(p);  // throws on bad parameters: fatal at start-up
     HeadAttractor::Behaviour b;
@@ -91,11 +96,17 @@ private:
   {
     std::lock_guard<std::mutex> lock(mutex_);
     for (size_t i = 0; i < m->name.size() && i < m->position.size(); ++i)
-      if (m->name[i] == "head_pan_joint" && std::isfinite(m->position[i]))
+    {
+      if (!std::isfinite(m->position[i]))
+        continue;
+      if (m->name[i] == "head_pan_joint")
       {
         pan_ = m->position[i];
         joints_stamp_ = ros::Time::now();
       }
+      else if (m->name[i] == "head_tilt_joint")
+        tilt_ = m->position[i];
+    }
   }
 
   void onInfo(const sensor_msgs::CameraInfoConstPtr& m)
@@ -148,11 +159,11 @@ private:
       return;
     }
     const double dt = e.last_real.isZero() ? 1.0 / control_rate_ : (e.current_real - e.last_real).toSec();
-    const auto out = attractor_->update(regions_, pan_, now.toSec(), dt, half_fov_);
+    const auto out = attractor_->update(regions_, pan_, now.toSec(), dt, half_fov_, tilt_);
     regions_.clear();  // each frame's regions are used once
     std_msgs::Float64 pan_cmd, tilt_cmd;
     pan_cmd.data = out.command;
-    tilt_cmd.data = tilt_command_;
+    tilt_cmd.data = out.tilt_command;
     pan_pub_.publish(pan_cmd);
     tilt_pub_.publish(tilt_cmd);
     biovision_msgs::AttractorState s;
@@ -182,7 +193,7 @@ private:
   std::unique_ptr<HeadAttractor> attractor_;
   std::vector<SeenRegion> regions_;
   biovision_msgs::SalientRegionArrayConstPtr latest_regions_;
-  double pan_ = 0.0, min_area_ = 200.0, control_rate_ = 10.0, joint_timeout_ = 0.5, tilt_command_ = 0.3, half_fov_ = 0.375;
+  double pan_ = 0.0, tilt_ = 0.3, min_area_ = 200.0, control_rate_ = 10.0, joint_timeout_ = 0.5, half_fov_ = 0.375;
   ros::Time joints_stamp_;
 };
 

@@ -164,6 +164,37 @@ TEST(HeadAttractor, NothingSalientReturnsToSafeStraightAhead)
   EXPECT_LT(std::abs(pan), deg(12)) << "should settle straight ahead, not run away";
 }
 
+TEST(HeadAttractor, TiltFollowsTheFixatedTargetWithinItsLimits)
+{
+  HeadAttractorParameters p;
+  p.repulsion_step = 0.0;
+  HeadAttractor head(p);
+  double pan = 0.0, tilt = p.default_tilt;
+  const double object_pan = deg(10), object_tilt = deg(25);  // lower than the default tilt
+  for (int k = 0; k < 400; ++k)
+  {
+    std::vector<SeenRegion> seen;
+    if (std::abs(object_pan - pan) <= kHalfFov)
+      seen.push_back({object_pan, object_tilt, 1.0, 1000.0});
+    const auto out = head.update(seen, pan, k * kDt, kDt, kHalfFov, tilt);
+    ASSERT_GE(out.tilt_command, p.tilt_lower);
+    ASSERT_LE(out.tilt_command, p.tilt_upper);
+    pan = servo(pan, out.command);
+    tilt = servo(tilt, out.tilt_command);
+  }
+  EXPECT_NEAR(tilt, object_tilt, deg(1));
+  // A target below the tilt limit: the command stops at the limit.
+  HeadAttractor low(p);
+  tilt = 0.0;
+  for (int k = 0; k < 400; ++k)
+  {
+    const auto out = low.update({{0.0, 2.0, 1.0, 1000.0}}, 0.0, k * kDt, kDt, kHalfFov, tilt);
+    ASSERT_LE(out.tilt_command, p.tilt_upper);
+    tilt = servo(tilt, out.tilt_command);
+  }
+  EXPECT_NEAR(tilt, p.tilt_upper, 1e-9);
+}
+
 TEST(HeadAttractor, HoldKeepsThePan)
 {
   HeadAttractor head{HeadAttractorParameters()};

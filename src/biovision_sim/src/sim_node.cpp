@@ -115,7 +115,8 @@ int main(int argc, char** argv)
     ROS_FATAL("sim: ~world (a world YAML file) is required");
     return 1;
   }
-  double camera_rate, physics_rate, hfov_deg, real_time_factor, noise_sigma, start_x, start_y, start_yaw, servo_speed;
+  double camera_rate, physics_rate, hfov_deg, real_time_factor, noise_sigma, blur_sigma, start_x, start_y, start_yaw,
+      servo_speed;
   int width, height, supersample, seed;
   bool publish_clock;
   pnh.param("camera_rate", camera_rate, 10.0);
@@ -125,6 +126,7 @@ int main(int argc, char** argv)
   pnh.param("horizontal_fov_deg", hfov_deg, 43.0);
   pnh.param("supersample", supersample, 2);
   pnh.param("noise_sigma", noise_sigma, 0.0);
+  pnh.param("blur_sigma", blur_sigma, 0.0);  // optical blur [px], Gaussian
   pnh.param("seed", seed, 1);
   pnh.param("real_time_factor", real_time_factor, 1.0);
   pnh.param("publish_clock", publish_clock, true);
@@ -133,10 +135,11 @@ int main(int argc, char** argv)
   pnh.param("start_yaw", start_yaw, 0.0);
   pnh.param("servo_speed", servo_speed, 3.0);
   if (!(camera_rate > 0 && physics_rate >= camera_rate && width >= 32 && height >= 24 && hfov_deg > 1 && hfov_deg < 179 &&
-        real_time_factor >= 0 && noise_sigma >= 0 && servo_speed > 0 && supersample >= 1 && supersample <= 4))
+        real_time_factor >= 0 && noise_sigma >= 0 && blur_sigma >= 0 && blur_sigma <= 10 && servo_speed > 0 && supersample >= 1 && supersample <= 4))
   {
     ROS_FATAL("sim: bad parameters (need camera_rate > 0, physics_rate >= camera_rate, width >= 32, height >= 24, "
-              "1 < horizontal_fov_deg < 179, real_time_factor >= 0, noise_sigma >= 0, servo_speed > 0, supersample 1..4)");
+              "1 < horizontal_fov_deg < 179, real_time_factor >= 0, noise_sigma >= 0, 0 <= blur_sigma <= 10, servo_speed > 0, "
+              "supersample 1..4)");
     return 1;
   }
 
@@ -319,6 +322,9 @@ int main(int argc, char** argv)
       cv::Mat left, right, depth, right_depth;
       renderer.render(world_from_base * left_chain.evaluate(names, q), camera, left, depth);
       renderer.render(world_from_base * right_chain.evaluate(names, q), camera, right, right_depth);
+      if (blur_sigma > 0)
+        for (cv::Mat* img : {&left, &right})
+          cv::GaussianBlur(*img, *img, cv::Size(), blur_sigma);
       if (noise_sigma > 0)
         for (cv::Mat* img : {&left, &right})
           for (auto p = img->begin<cv::Vec3b>(); p != img->end<cv::Vec3b>(); ++p)

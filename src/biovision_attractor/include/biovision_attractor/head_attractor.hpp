@@ -24,7 +24,8 @@ struct SeenRegion
 ///  s_i = exp((Ar_max - Ar_i)/beta_r) - 1, the section's repulsion, growing while the head dwells there;
 /// plus permanent repellers just outside +-90 deg (the walls). Behaviours change the forcelets:
 /// explore (as above), track (only the tracked direction attracts; no repulsion), look_ahead (a periodic
-/// attractor at 0 deg), hold (rate 0). The selected attractor gets a persistence bonus, which breaks
+/// attractor at 0 deg), hold (rate 0). The tilt follows the same attractor form, towards the selected
+/// target's tilt (or default_tilt) -- the thesis' "future work" of 2-D control. The selected attractor gets a persistence bonus, which breaks
 /// ties between equal targets and stops dithering between near-equal ones. Beyond the thesis, a target
 /// the head fixates habituates (its attraction fades over habituation_time and recovers when it is not
 /// fixated): with the thesis' spatial boredom alone, a head between two sections alternates boredom
@@ -44,6 +45,9 @@ public:
   {
     double rate = 0.0;            ///< [rad/s] after limits
     double command = 0.0;         ///< pan position command [rad], inside the limits
+    double tilt_rate = 0.0;       ///< [rad/s]
+    double tilt_command = 0.0;    ///< tilt position command [rad], inside the tilt limits
+    double tilt_target = 0.0;     ///< the tilt the dynamics head for [rad]
     double target = 0.0;          ///< angle the dynamics head for (the dominant attractor), NaN if none
     bool saccade = false;         ///< the command jumps straight to the target
     std::vector<double> attraction, repulsion, forcelet;  ///< per section
@@ -53,7 +57,8 @@ public:
 
   /// One control step at time t [s] with the head at `pan` [rad]; `regions` are this frame's (may be
   /// empty). dt: time since the previous step [s].
-  Output update(const std::vector<SeenRegion>& regions, double pan, double t, double dt, double half_fov);
+  Output update(const std::vector<SeenRegion>& regions, double pan, double t, double dt, double half_fov,
+                double tilt = 0.0);
 
   void setBehaviour(Behaviour b, double track_angle = 0.0);
   Behaviour behaviour() const { return behaviour_; }
@@ -68,6 +73,7 @@ private:
   double track_angle_ = 0.0;
   std::vector<double> saliency_;   // A_s (remembered for out-of-view sections)
   std::vector<double> direction_;  // where in each section its strongest region was seen [rad]
+  std::vector<double> tilt_;       // and at which tilt [rad]
   std::vector<double> repulsion_;  // A_r in [0, 1]; 1 = no repulsion
   double last_salient_time_ = -1e300;
   int selected_ = -1;  // the attractor the head is going to (kept while it stays competitive)

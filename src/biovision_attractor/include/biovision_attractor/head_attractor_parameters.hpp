@@ -29,6 +29,9 @@ struct HeadAttractorParameters
   double look_ahead_period = 6.0;   ///< [s] look_ahead: the 0-deg attractor appears this often
   double look_ahead_duration = 2.0; ///< [s] and lasts this long
   double pan_lower = -1.5708, pan_upper = 1.5708;  ///< [rad] joint limits (from the URDF in the node)
+  double tilt_lower = -0.7854, tilt_upper = 0.7854;  ///< [rad]
+  double default_tilt = 0.3;        ///< [rad, + = down] the tilt returns here when nothing is selected
+  bool tilt_dynamics = true;        ///< false: the tilt stays at default_tilt (the thesis' fixed tilt)
 
   /// Throws std::invalid_argument naming the offending field.
   void validate() const;

@@ -22,18 +22,13 @@ void SaliencyNodelet::onInit()
   pnh.param("pan_joint", pan_joint_, pan_joint_);
   pnh.param("tilt_joint", tilt_joint_, tilt_joint_);
   pnh.param("max_input_age", max_input_age_, 0.5);
-  pnh.param("diagnostics_min_rate", min_rate_, 1.0);
-  pnh.param("diagnostics_max_rate", max_rate_, 100.0);
 
   reconfigure_server_ = std::make_unique<dynamic_reconfigure::Server<SaliencyConfig>>(reconfigure_mutex_, pnh);
   reconfigure_server_->setCallback([this](SaliencyConfig& c, uint32_t level) { reconfigure(c, level); });
 
-  updater_ = std::make_unique<diagnostic_updater::Updater>(nh, pnh, getName());
-  updater_->setHardwareID("none");
-  updater_->add("Saliency", this, &SaliencyNodelet::diagnose);
-  rate_diagnostic_ = std::make_unique<diagnostic_updater::HeaderlessTopicDiagnostic>(
-      "saliency/regions", *updater_, diagnostic_updater::FrequencyStatusParam(&min_rate_, &max_rate_, 0.1, 10));
-  diagnostics_timer_ = nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { updater_->update(); });
+  diagnostics_.init(nh, pnh, getName(), "Saliency", "saliency/regions", 100.0, [this] { return !image_sub_; },
+                    "idle: nobody subscribes to saliency outputs", "processing",
+                    [this](diagnostic_updater::DiagnosticStatusWrapper& s) { details(s); });
   reset_srv_ = nh.advertiseService("saliency/reset_inhibition", &SaliencyNodelet::resetInhibition, this);
 
   std::lock_guard<std::mutex> lock(connect_mutex_);
@@ -99,7 +94,7 @@ void SaliencyNodelet::reconfigure(SaliencyConfig& c, uint32_t /*level*/)
   }
   catch (const std::invalid_argument& e)
   {
-    health_.reportError(getName(), std::string("rejected parameters (keeping the previous ones): ") + e.what());
+    diagnostics_.health().reportError(getName(), std::string("rejected parameters (keeping the previous ones): ") + e.what());
     std::lock_guard<std::mutex> lock(state_mutex_);
     if (!pipeline_)
       pipeline_ = std::make_unique<SaliencyPipeline>(SaliencyParameters());
@@ -199,7 +194,7 @@ void SaliencyNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
   }
   catch (const std::exception& ex)
   {
-    health_.reportError(getName(), "dropping image " + std::to_string(msg->width) + "x" +
+    diagnostics_.health().reportError(getName(), "dropping image " + std::to_string(msg->width) + "x" +
                                        std::to_string(msg->height) + " '" + msg->encoding + "': " + ex.what());
     return;
   }
@@ -228,16 +223,15 @@ void SaliencyNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
     regions->regions.push_back(m);
   }
   regions_pub_.publish(regions);
-  rate_diagnostic_->tick();
+  diagnostics_.tick();
   if (map_pub_.getNumSubscribers() > 0)
     map_pub_.publish(cv_bridge::CvImage(msg->header, enc::TYPE_32FC1, result.map).toImageMsg());
   if (thresholded_pub_.getNumSubscribers() > 0)
     thresholded_pub_.publish(cv_bridge::CvImage(msg->header, enc::MONO8, result.thresholded).toImageMsg());
 }
 
-void SaliencyNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
+void SaliencyNodelet::details(diagnostic_updater::DiagnosticStatusWrapper& status)
 {
-  health_.summarize(status, !image_sub_, "idle: nobody subscribes to saliency outputs", "processing");
   std::lock_guard<std::mutex> lock(state_mutex_);
   status.add("last processing time [ms]", last_ms_);
   status.add("last regions", last_regions_);

@@ -64,8 +64,6 @@ void BioBinDisparityNodelet::onInit()
   pnh.param("approximate_sync", approximate, false);
   pnh.param("use_color", use_color_, true);
   pnh.param("queue_size", queue_size_, 5);
-  pnh.param("diagnostics_min_rate", min_rate_, 1.0);
-  pnh.param("diagnostics_max_rate", max_rate_, 60.0);
   if (approximate)
   {
     approximate_sync_ = std::make_unique<message_filters::Synchronizer<ApproximatePolicy>>(
@@ -82,29 +80,13 @@ void BioBinDisparityNodelet::onInit()
   reconfigure_server_ = std::make_unique<dynamic_reconfigure::Server<BioBinDisparityConfig>>(reconfigure_mutex_, pnh);
   reconfigure_server_->setCallback([this](BioBinDisparityConfig& c, uint32_t level) { reconfigure(c, level); });
 
-  updater_ = std::make_unique<diagnostic_updater::Updater>(nh, pnh, getName());
-  updater_->setHardwareID("none");
-  updater_->add("BioBin disparity", this, &BioBinDisparityNodelet::diagnose);
-  rate_diagnostic_ = std::make_unique<diagnostic_updater::HeaderlessTopicDiagnostic>(
-      "disparity", *updater_, diagnostic_updater::FrequencyStatusParam(&min_rate_, &max_rate_, 0.1, 10));
   left_sub_.registerCallback(boost::function<void(const sensor_msgs::ImageConstPtr&)>(
       [this](const sensor_msgs::ImageConstPtr&) { ++left_images_; }));
   last_pair_time_ = ros::WallTime::now();
-  diagnostics_timer_ = nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) {
-    // Left images keep coming but no pair for 3 s: the streams are not synchronised.
-    const unsigned left = left_images_, pairs = pairs_;
-    if (pairs != watched_pairs_)
-      last_pair_time_ = ros::WallTime::now();
-    else if (left > watched_left_ + 2 && (ros::WallTime::now() - last_pair_time_).toSec() > 3.0)
-    {
-      health_.reportError(getName(), "left images arrive but no left/right/camera_info set is synchronised for 3 s (" +
-                  std::string(approximate_sync_ ? "approximate" : "exact") + " sync; check stamps or set "
-                  "~approximate_sync)");
-    }
-    watched_left_ = left;
-    watched_pairs_ = pairs;
-    updater_->update();
-  });
+  diagnostics_.init(nh, pnh, getName(), "BioBin disparity", "disparity", 60.0, [this] { return !subscribed_; },
+                    "idle: nobody subscribes to disparity or obstacle_mask", "matching",
+                    [this](diagnostic_updater::DiagnosticStatusWrapper& s) { details(s); },
+                    [this] { watchSynchronisation(); });
 
   std::lock_guard<std::mutex> lock(connect_mutex_);
   auto connect = [this](const auto&) { connectCallback(); };
@@ -168,7 +150,7 @@ void BioBinDisparityNodelet::reconfigure(BioBinDisparityConfig& config, uint32_t
   }
   catch (const std::invalid_argument& e)
   {
-    health_.reportError(getName(), std::string("rejected parameters (keeping the previous ones): ") + e.what());
+    diagnostics_.health().reportError(getName(), std::string("rejected parameters (keeping the previous ones): ") + e.what());
     std::lock_guard<std::mutex> lock(matcher_mutex_);
     if (!matcher_)
       matcher_ = std::make_unique<BioBinMatcher>(BioBinParameters());
@@ -212,7 +194,7 @@ void BioBinDisparityNodelet::pairCallback(const sensor_msgs::ImageConstPtr& left
   }
   catch (const std::exception& e)  // invalid_argument, cv_bridge::Exception, cv::Exception
   {
-    health_.reportError(getName(), std::string("dropping stereo pair: ") + e.what());
+    diagnostics_.health().reportError(getName(), std::string("dropping stereo pair: ") + e.what());
     return;
   }
 
@@ -233,7 +215,7 @@ void BioBinDisparityNodelet::pairCallback(const sensor_msgs::ImageConstPtr& left
   const int valid = cv::countNonZero(result.disparity >= 0.f);
   last_valid_fraction_ = double(valid) / std::max(1, result.disparity.rows * result.disparity.cols);
   disparity_pub_.publish(msg);
-  rate_diagnostic_->tick();
+  diagnostics_.tick();
 
   if (obstacle_pub_.getNumSubscribers() > 0)
   {
@@ -243,9 +225,22 @@ void BioBinDisparityNodelet::pairCallback(const sensor_msgs::ImageConstPtr& left
   }
 }
 
-void BioBinDisparityNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
+void BioBinDisparityNodelet::watchSynchronisation()
 {
-  health_.summarize(status, !subscribed_, "idle: nobody subscribes to disparity or obstacle_mask", "matching");
+  // Left images keep coming but no pair for 3 s: the streams are not synchronised.
+  const unsigned left = left_images_, pairs = pairs_;
+  if (pairs != watched_pairs_)
+    last_pair_time_ = ros::WallTime::now();
+  else if (left > watched_left_ + 2 && (ros::WallTime::now() - last_pair_time_).toSec() > 3.0)
+    diagnostics_.health().reportError(getName(), "left images arrive but no left/right/camera_info set is synchronised for 3 s (" +
+                                                     std::string(approximate_sync_ ? "approximate" : "exact") +
+                                                     " sync; check stamps or set ~approximate_sync)");
+  watched_left_ = left;
+  watched_pairs_ = pairs;
+}
+
+void BioBinDisparityNodelet::details(diagnostic_updater::DiagnosticStatusWrapper& status)
+{
   std::lock_guard<std::mutex> lock(matcher_mutex_);
   status.add("last processing time [ms]", last_ms_);
   status.add("last valid fraction", last_valid_fraction_);

@@ -48,19 +48,14 @@ void V1CellsNodelet::onInit()
   ros::NodeHandle& nh = getNodeHandle();
   ros::NodeHandle& pnh = getPrivateNodeHandle();
   it_ = std::make_unique<image_transport::ImageTransport>(nh);
-  pnh.param("diagnostics_min_rate", min_rate_, 1.0);
-  pnh.param("diagnostics_max_rate", max_rate_, 100.0);
 
   // Parameters from YAML arrive through dynamic_reconfigure's server (it reads the private namespace).
   reconfigure_server_ = std::make_unique<dynamic_reconfigure::Server<V1CellsConfig>>(reconfigure_mutex_, pnh);
   reconfigure_server_->setCallback([this](V1CellsConfig& c, uint32_t level) { reconfigure(c, level); });
 
-  updater_ = std::make_unique<diagnostic_updater::Updater>(nh, pnh, getName());
-  updater_->setHardwareID("none");
-  updater_->add("V1 cells", this, &V1CellsNodelet::diagnose);
-  rate_diagnostic_ = std::make_unique<diagnostic_updater::HeaderlessTopicDiagnostic>(
-      "keypoints", *updater_, diagnostic_updater::FrequencyStatusParam(&min_rate_, &max_rate_, 0.1, 10));
-  diagnostics_timer_ = nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { updater_->update(); });
+  diagnostics_.init(nh, pnh, getName(), "V1 cells", "keypoints", 100.0, [this] { return !image_sub_; },
+                    "idle: nobody subscribes to keypoints or debug_image", "processing",
+                    [this](diagnostic_updater::DiagnosticStatusWrapper& s) { details(s); });
 
   std::lock_guard<std::mutex> lock(connect_mutex_);
   auto connect = [this](const auto&) { connectCallback(); };
@@ -115,7 +110,7 @@ void V1CellsNodelet::reconfigure(V1CellsConfig& config, uint32_t /*level*/)
   catch (const std::invalid_argument& e)
   {
     // Keep the previous, valid pipeline; a rejected value never gets used.
-    health_.reportError(getName(), std::string("rejected parameters (keeping the previous ones): ") + e.what());
+    diagnostics_.health().reportError(getName(), std::string("rejected parameters (keeping the previous ones): ") + e.what());
     std::lock_guard<std::mutex> lock(pipeline_mutex_);
     if (!pipeline_)
       pipeline_ = std::make_unique<V1Pipeline>(V1Pipeline::Parameters());
@@ -137,7 +132,7 @@ void V1CellsNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
     }
     catch (const std::exception& e)  // invalid_argument, cv_bridge::Exception, cv::Exception
     {
-      health_.reportError(getName(), "dropping image " + std::to_string(msg->width) + "x" + std::to_string(msg->height) +
+      diagnostics_.health().reportError(getName(), "dropping image " + std::to_string(msg->width) + "x" + std::to_string(msg->height) +
                                          " '" + msg->encoding + "' from " + image_sub_.getTopic() + ": " + e.what());
       return;
     }
@@ -164,7 +159,7 @@ void V1CellsNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
     out->keypoints.push_back(m);
   }
   keypoints_pub_.publish(out);
-  rate_diagnostic_->tick();
+  diagnostics_.tick();
   if (want_debug)
     debug_pub_.publish(debugImage(input, result, msg->header));
 }
@@ -196,9 +191,8 @@ sensor_msgs::ImagePtr V1CellsNodelet::debugImage(const cv::Mat& input, const V1R
   return cv_bridge::CvImage(header, enc::BGR8, canvas).toImageMsg();
 }
 
-void V1CellsNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
+void V1CellsNodelet::details(diagnostic_updater::DiagnosticStatusWrapper& status)
 {
-  health_.summarize(status, !image_sub_, "idle: nobody subscribes to keypoints or debug_image", "processing");
   std::lock_guard<std::mutex> lock(pipeline_mutex_);
   status.add("last processing time [ms]", last_ms_);
   status.add("last keypoints", last_keypoints_);

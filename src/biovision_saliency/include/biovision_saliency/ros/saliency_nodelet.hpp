@@ -20,7 +20,7 @@
 #include <stereo_msgs/DisparityImage.h>
 
 #include "biovision_saliency/saliency_pipeline.hpp"
-#include "biovision_v1/ros/processing_health.hpp"
+#include "biovision_v1/ros/nodelet_diagnostics.hpp"
 
 namespace biovision_saliency
 {
@@ -40,7 +40,7 @@ private:
   void infoCallback(const sensor_msgs::CameraInfoConstPtr& msg);
   bool resetInhibition(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   void reconfigure(SaliencyConfig& config, uint32_t level);
-  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
+  void details(diagnostic_updater::DiagnosticStatusWrapper& status);
 
   std::unique_ptr<image_transport::ImageTransport> it_;
   image_transport::Subscriber image_sub_;
@@ -62,11 +62,7 @@ private:
 
   std::unique_ptr<dynamic_reconfigure::Server<SaliencyConfig>> reconfigure_server_;
   boost::recursive_mutex reconfigure_mutex_;  // dynamic_reconfigure::Server takes a boost mutex
-  std::unique_ptr<diagnostic_updater::Updater> updater_;
-  std::unique_ptr<diagnostic_updater::HeaderlessTopicDiagnostic> rate_diagnostic_;
-  ros::Timer diagnostics_timer_;
-  double min_rate_ = 1.0, max_rate_ = 100.0;
-  biovision_v1::ProcessingHealth health_;
+  biovision_v1::NodeletDiagnostics diagnostics_;
   double last_ms_ = 0.0;
   size_t last_regions_ = 0;
   std::string last_channels_;

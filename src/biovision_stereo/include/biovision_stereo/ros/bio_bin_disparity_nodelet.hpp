@@ -22,7 +22,7 @@
 #include <sensor_msgs/Image.h>
 
 #include "biovision_stereo/bio_bin_matcher.hpp"
-#include "biovision_v1/ros/processing_health.hpp"
+#include "biovision_v1/ros/nodelet_diagnostics.hpp"
 
 namespace biovision_stereo
 {
@@ -48,7 +48,8 @@ private:
   void pairCallback(const sensor_msgs::ImageConstPtr& left, const sensor_msgs::CameraInfoConstPtr& left_info,
                     const sensor_msgs::ImageConstPtr& right, const sensor_msgs::CameraInfoConstPtr& right_info);
   void reconfigure(BioBinDisparityConfig& config, uint32_t level);
-  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
+  void details(diagnostic_updater::DiagnosticStatusWrapper& status);
+  void watchSynchronisation();
 
   std::unique_ptr<image_transport::ImageTransport> it_;
   image_transport::SubscriberFilter left_sub_, right_sub_;
@@ -68,11 +69,7 @@ private:
   std::unique_ptr<dynamic_reconfigure::Server<BioBinDisparityConfig>> reconfigure_server_;
   boost::recursive_mutex reconfigure_mutex_;  // dynamic_reconfigure::Server takes a boost mutex
 
-  std::unique_ptr<diagnostic_updater::Updater> updater_;
-  std::unique_ptr<diagnostic_updater::HeaderlessTopicDiagnostic> rate_diagnostic_;
-  ros::Timer diagnostics_timer_;
-  double min_rate_ = 1.0, max_rate_ = 60.0;
-  biovision_v1::ProcessingHealth health_;
+  biovision_v1::NodeletDiagnostics diagnostics_;
   double last_ms_ = 0.0, last_valid_fraction_ = 0.0;
   // Watchdog for pairs the synchroniser never matches (e.g. different stamps with exact sync).
   std::atomic<unsigned> left_images_{0}, pairs_{0};

@@ -15,7 +15,7 @@
 
 #include <boost/thread/recursive_mutex.hpp>
 
-#include "biovision_v1/ros/processing_health.hpp"
+#include "biovision_v1/ros/nodelet_diagnostics.hpp"
 #include "biovision_v1/v1_pipeline.hpp"
 
 namespace biovision_v1
@@ -33,7 +33,7 @@ private:
   void connectCallback();
   void imageCallback(const sensor_msgs::ImageConstPtr& msg);
   void reconfigure(V1CellsConfig& config, uint32_t level);
-  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
+  void details(diagnostic_updater::DiagnosticStatusWrapper& status);
   sensor_msgs::ImagePtr debugImage(const cv::Mat& bgr, const V1Result& result, const std_msgs::Header& header) const;
 
   std::unique_ptr<image_transport::ImageTransport> it_;
@@ -47,11 +47,7 @@ private:
   std::unique_ptr<dynamic_reconfigure::Server<V1CellsConfig>> reconfigure_server_;
   boost::recursive_mutex reconfigure_mutex_;  // dynamic_reconfigure::Server takes a boost mutex
 
-  std::unique_ptr<diagnostic_updater::Updater> updater_;
-  std::unique_ptr<diagnostic_updater::HeaderlessTopicDiagnostic> rate_diagnostic_;
-  ros::Timer diagnostics_timer_;
-  double min_rate_ = 1.0, max_rate_ = 100.0;
-  ProcessingHealth health_;
+  NodeletDiagnostics diagnostics_;
   double last_ms_ = 0.0;
   size_t last_keypoints_ = 0;
   int last_nonfinite_ = 0;

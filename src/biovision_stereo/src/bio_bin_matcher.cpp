@@ -98,7 +98,7 @@ CostVolume BioBinMatcher::levelCosts(size_t level, const cv::Mat& left, const cv
   {
     // Line/edge events of the left image, on the bank's exact decimated grid, back at level size.
     const auto cells = barrier_banks_[level]->compute(left_gray);
-    const biovision_v1::EndStoppedCells end_stopped(cells[0]);
+    const biovision_v1::EndStoppedCells end_stopped(cells[0], 0.6, false);  // single cells suffice here
     const cv::Mat events = biovision_v1::LineEdgeDetector().detect(cells[0], end_stopped).mask();
     cv::Mat up;
     cv::resize(events, up, cv::Size(events.cols * cells[0].decimation, events.rows * cells[0].decimation), 0, 0,

@@ -39,15 +39,17 @@ PixelDescriptorImage PixelDescriptorImage::compute(const std::vector<cv::Mat>& o
   checkInput(odd);
   const int w = odd.front().cols, h = odd.front().rows;
   PixelDescriptorImage image(w, h);
-  std::vector<std::uint8_t> above, centre, below;
+  std::vector<std::vector<std::uint8_t>> bits(h);  // comparisons of every row, once per orientation
   for (int o = 0; o < kOrientations; ++o)
   {
     const int word = o / 2, shift = 32 * (o % 2);
     for (int y = 0; y < h; ++y)
+      comparisonRow(odd[o].ptr<float>(y), w, bits[y]);
+    for (int y = 0; y < h; ++y)
     {
-      comparisonRow(odd[o].ptr<float>(std::max(y - 1, 0)), w, above);
-      comparisonRow(odd[o].ptr<float>(y), w, centre);
-      comparisonRow(odd[o].ptr<float>(std::min(y + 1, h - 1)), w, below);
+      const std::vector<std::uint8_t>& above = bits[std::max(y - 1, 0)];
+      const std::vector<std::uint8_t>& centre = bits[y];
+      const std::vector<std::uint8_t>& below = bits[std::min(y + 1, h - 1)];
       // Segments hold the comparisons at x-8..x+7 (centre) and x-4..x+3 (above, below); before x = 0
       // they hold those up to x+6 / x+2, so that shifting in x+7 / x+3 completes them.
       std::uint32_t c = 0, a = 0, b = 0;

@@ -7,12 +7,13 @@
 
 namespace biovision_v1
 {
-EndStoppedCells::EndStoppedCells(const ScaleResponses& responses, double offset)
+EndStoppedCells::EndStoppedCells(const ScaleResponses& responses, double offset, bool with_double)
   : orientations_(responses.orientations()), d_(offset * responses.gridWavelength())
 {
   complex_ = responses.complexCells();
   single_.resize(orientations_);
-  double_.resize(orientations_);
+  if (with_double)
+    double_.resize(orientations_);
   for (int i = 0; i < orientations_; ++i)
   {
     double peak = 0.0;
@@ -21,6 +22,8 @@ EndStoppedCells::EndStoppedCells(const ScaleResponses& responses, double offset)
     const cv::Point2f t = tangent(i) * static_cast<float>(d_);
     const cv::Mat ahead = shifted(complex_[i], t), behind = shifted(complex_[i], -t);
     single_[i] = cv::abs(ahead - behind);
+    if (!with_double)
+      continue;
     const cv::Mat ahead2 = shifted(complex_[i], 2 * t), behind2 = shifted(complex_[i], -2 * t);
     cv::Mat dbl = complex_[i] - 0.5 * ahead2 - 0.5 * behind2;
     double_[i] = cv::max(dbl, 0.0);

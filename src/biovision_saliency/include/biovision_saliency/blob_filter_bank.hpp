@@ -24,6 +24,8 @@ public:
   const std::vector<double>& sigmas() const { return sigmas_; }
 
 private:
+  void filter(const cv::Mat& map, cv::Mat& on, cv::Mat* off) const;
+
   std::vector<double> sigmas_;
 };
 }  // namespace biovision_saliency

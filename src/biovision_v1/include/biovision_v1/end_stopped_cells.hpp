@@ -18,8 +18,9 @@ namespace biovision_v1
 class EndStoppedCells
 {
 public:
-  /// offset: d in wavelengths (Rodrigues & du Buf use 0.6).
-  EndStoppedCells(const ScaleResponses& responses, double offset = 0.6);
+  /// offset: d in wavelengths (Rodrigues & du Buf use 0.6). with_double = false skips the double
+  /// end-stopped cells (the line/edge map needs only the single ones); doubleStopped() is then empty.
+  EndStoppedCells(const ScaleResponses& responses, double offset = 0.6, bool with_double = true);
 
   const std::vector<cv::Mat>& complexCells() const { return complex_; }
   const std::vector<cv::Mat>& singleStopped() const { return single_; }

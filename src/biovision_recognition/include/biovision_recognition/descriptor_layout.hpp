@@ -1,0 +1,39 @@
+#pragma once
+
+#include <vector>
+
+namespace biovision_recognition
+{
+/// Which pooled V1 cell responses make the descriptor's input vector x (thesis 3.3.2).
+///
+/// The patch around a keypoint of wavelength lambda_k is patch_wavelengths * lambda_k wide (32 px at
+/// lambda_k = 4, as the source's 32 x 32 patches). Descriptor scale j uses cells of wavelength
+/// lambda_k * 2^(j/2), i.e. 4 * 2^(j/2) px of the 32 px patch: j = 0..6 are the source's
+/// {4, 6, 8, 12, 16, 24, 32} (as half octaves). Each scale is read on pyramid level k + j where those
+/// cells are lambda = 4, so its pooling fields (diameter 4, step 2, as the source's best) are in level
+/// pixels: the pooling grid coarsens with the scale. Deviation, on purpose: the source pooled every
+/// scale on the 32 x 32 patch grid; a response at wavelength lambda carries nothing finer than lambda / 2,
+/// so that finer grid only adds correlated copies (25,200 inputs for 7 scales, whose Sigma_N^-1/2 is
+/// infeasible) where this grid gives 6,416.
+/// Order in x: scale, then channel (even 0..N-1, odd 0..N-1), then grid row, grid column.
+struct DescriptorLayout
+{
+  std::vector<int> scales{0, 1, 2, 3, 4, 5, 6};  ///< j, ascending, >= 0
+  int orientations = 8;
+  double patch_wavelengths = 8.0;  ///< patch side / keypoint wavelength. > 0
+  int pooling_diameter = 4;        ///< [level px]
+  int pooling_step = 2;            ///< [level px]
+
+  /// Pooling fields per side of scale j.
+  int gridSide(int j) const;
+  /// Length of x.
+  int featureCount() const;
+  /// Throws std::invalid_argument naming the offending field.
+  void validate() const;
+  bool operator==(const DescriptorLayout& o) const
+  {
+    return scales == o.scales && orientations == o.orientations && patch_wavelengths == o.patch_wavelengths &&
+           pooling_diameter == o.pooling_diameter && pooling_step == o.pooling_step;
+  }
+};
+}  // namespace biovision_recognition

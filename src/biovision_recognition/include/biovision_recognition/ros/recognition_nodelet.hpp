@@ -1,0 +1,78 @@
+#pragma once
+
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include <biovision_msgs/ForgetObject.h>
+#include <biovision_msgs/LearnObject.h>
+#include <biovision_msgs/ListObjects.h>
+#include <biovision_msgs/SalientRegionArray.h>
+#include <biovision_recognition/RecognitionConfig.h>
+#include <boost/thread/recursive_mutex.hpp>
+#include <dynamic_reconfigure/server.h>
+#include <geometry_msgs/Point.h>
+#include <image_transport/image_transport.h>
+#include <nodelet/nodelet.h>
+#include <ros/ros.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
+#include <stereo_msgs/DisparityImage.h>
+
+#include "biovision_recognition/object_recognizer.hpp"
+#include "biovision_v1/ros/nodelet_diagnostics.hpp"
+
+namespace biovision_recognition
+{
+/// ROS wrapper of ObjectRecognizer. For every `image` (the left camera) it looks in the latest
+/// `saliency/regions` (when recent; else the whole image) and publishes `objects`
+/// (biovision_msgs/RecognizedObjectArray) and, while watched, `recognition/debug_image`. With a recent
+/// `disparity` and `camera_info` each object also gets its position in the camera frame. Services
+/// `recognition/learn_object`, `recognition/forget_object`, `recognition/list_objects` edit the object
+/// memory at run time; `~memory_file` is loaded at start and rewritten (atomically) after every edit.
+class RecognitionNodelet : public nodelet::Nodelet
+{
+private:
+  void onInit() override;
+  void connectCallback();
+  void imageCallback(const sensor_msgs::ImageConstPtr& msg);
+  void regionsCallback(const biovision_msgs::SalientRegionArrayConstPtr& msg);
+  void disparityCallback(const stereo_msgs::DisparityImageConstPtr& msg);
+  void infoCallback(const sensor_msgs::CameraInfoConstPtr& msg);
+  bool learn(biovision_msgs::LearnObject::Request& req, biovision_msgs::LearnObject::Response& res);
+  bool forget(biovision_msgs::ForgetObject::Request& req, biovision_msgs::ForgetObject::Response& res);
+  bool list(biovision_msgs::ListObjects::Request& req, biovision_msgs::ListObjects::Response& res);
+  void reconfigure(RecognitionConfig& config, uint32_t level);
+  void details(diagnostic_updater::DiagnosticStatusWrapper& status);
+  bool saveMemory(std::string& error);
+  /// Box centre in the camera frame from the median disparity inside the box; false without data.
+  bool position(const cv::Rect& box, const cv::Size& image_size, geometry_msgs::Point& point) const;
+
+  std::unique_ptr<image_transport::ImageTransport> it_;
+  image_transport::Subscriber image_sub_;
+  ros::Subscriber regions_sub_, disparity_sub_, info_sub_;
+  ros::Publisher objects_pub_;
+  image_transport::Publisher debug_pub_;
+  ros::ServiceServer learn_srv_, forget_srv_, list_srv_;
+  std::mutex connect_mutex_;
+
+  std::mutex state_mutex_;  // recogniser, memory and the latest inputs
+  std::unique_ptr<ObjectRecognizer> recognizer_;
+  std::unique_ptr<ObjectMemory> memory_;
+  std::string memory_file_;
+  int max_regions_ = 3;
+  double max_input_age_ = 0.5;
+  bool lazy_ = true;
+  cv::Mat last_gray_;
+  biovision_msgs::SalientRegionArrayConstPtr regions_;
+  stereo_msgs::DisparityImageConstPtr disparity_;
+  sensor_msgs::CameraInfoConstPtr info_;
+
+  std::unique_ptr<dynamic_reconfigure::Server<RecognitionConfig>> reconfigure_server_;
+  boost::recursive_mutex reconfigure_mutex_;
+  biovision_v1::NodeletDiagnostics diagnostics_;
+  ObjectRecognizer::Statistics last_stats_;
+  size_t last_objects_ = 0;
+  std::string model_id_;
+};
+}  // namespace biovision_recognition

@@ -1,0 +1,362 @@
+#include "biovision_recognition/ros/recognition_nodelet.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include <biovision_msgs/RecognizedObjectArray.h>
+#include <cv_bridge/cv_bridge.h>
+#include <opencv2/imgproc.hpp>
+#include <pluginlib/class_list_macros.hpp>
+#include <ros/package.h>
+#include <sensor_msgs/image_encodings.h>
+
+#include "biovision_recognition/stored_file.hpp"
+#include "biovision_v1/input_image.hpp"
+
+namespace biovision_recognition
+{
+namespace enc = sensor_msgs::image_encodings;
+
+void RecognitionNodelet::onInit()
+{
+  ros::NodeHandle& nh = getNodeHandle();
+  ros::NodeHandle& pnh = getPrivateNodeHandle();
+  it_ = std::make_unique<image_transport::ImageTransport>(nh);
+  std::string model_file;
+  pnh.param<std::string>("model_file", model_file,
+                         ros::package::getPath("biovision_recognition") + "/models/v1_ldahash_128.bin");
+  pnh.param<std::string>("memory_file", memory_file_, "");
+  pnh.param("max_input_age", max_input_age_, 0.5);
+  pnh.param("lazy", lazy_, true);
+
+  // Without a descriptor model the node cannot do anything: refuse to start rather than run blind.
+  const auto descriptor = std::make_shared<const V1Descriptor>(DescriptorModel::load(model_file));
+  model_id_ = descriptor->model().id();
+  recognizer_ = std::make_unique<ObjectRecognizer>(descriptor, ObjectRecognizer::Parameters());
+  memory_ = std::make_unique<ObjectMemory>(descriptor->model().bits(), model_id_);
+  if (!memory_file_.empty() && std::ifstream(memory_file_).good())
+  {
+    try
+    {
+      *memory_ = ObjectMemory::load(memory_file_, model_id_);
+      NODELET_INFO("recognition: loaded %zu views of %zu objects from %s", memory_->views().size(),
+                   memory_->labels().size(), memory_file_.c_str());
+    }
+    catch (const StoredFileError& e)
+    {
+      // Refused, not half-loaded: start empty, and keep the file for inspection (edits go elsewhere).
+      NODELET_ERROR("recognition: object memory refused, starting with an empty one: %s", e.what());
+      diagnostics_.health().reportError(getName(), std::string("object memory refused: ") + e.what());
+      memory_file_ += ".recovered";
+    }
+  }
+
+  reconfigure_server_ = std::make_unique<dynamic_reconfigure::Server<RecognitionConfig>>(reconfigure_mutex_, pnh);
+  reconfigure_server_->setCallback([this](RecognitionConfig& c, uint32_t level) { reconfigure(c, level); });
+  diagnostics_.init(nh, pnh, getName(), "Recognition", "objects", 100.0, [this] { return !image_sub_; },
+                    "idle: nobody subscribes to objects", "recognising",
+                    [this](diagnostic_updater::DiagnosticStatusWrapper& s) { details(s); });
+
+  learn_srv_ = nh.advertiseService("recognition/learn_object", &RecognitionNodelet::learn, this);
+  forget_srv_ = nh.advertiseService("recognition/forget_object", &RecognitionNodelet::forget, this);
+  list_srv_ = nh.advertiseService("recognition/list_objects", &RecognitionNodelet::list, this);
+
+  std::lock_guard<std::mutex> lock(connect_mutex_);
+  auto connect = [this](const auto&) { connectCallback(); };
+  objects_pub_ = nh.advertise<biovision_msgs::RecognizedObjectArray>(
+      "objects", 5, ros::SubscriberStatusCallback(connect), ros::SubscriberStatusCallback(connect));
+  debug_pub_ = it_->advertise("recognition/debug_image", 1, image_transport::SubscriberStatusCallback(connect),
+                              image_transport::SubscriberStatusCallback(connect));
+  if (!lazy_)
+  {
+    connect_mutex_.unlock();
+    connectCallback();
+    connect_mutex_.lock();
+  }
+}
+
+void RecognitionNodelet::connectCallback()
+{
+  std::lock_guard<std::mutex> lock(connect_mutex_);
+  const bool wanted = !lazy_ || objects_pub_.getNumSubscribers() > 0 || debug_pub_.getNumSubscribers() > 0;
+  ros::NodeHandle& nh = getNodeHandle();
+  if (!wanted && image_sub_)
+  {
+    image_sub_.shutdown();
+    regions_sub_.shutdown();
+    disparity_sub_.shutdown();
+    info_sub_.shutdown();
+  }
+  else if (wanted && !image_sub_)
+  {
+    image_transport::TransportHints hints("raw", ros::TransportHints(), getPrivateNodeHandle());
+    image_sub_ = it_->subscribe("image", 2, &RecognitionNodelet::imageCallback, this, hints);
+    regions_sub_ = nh.subscribe("saliency/regions", 5, &RecognitionNodelet::regionsCallback, this);
+    disparity_sub_ = nh.subscribe("disparity", 2, &RecognitionNodelet::disparityCallback, this);
+    info_sub_ = nh.subscribe("camera_info", 2, &RecognitionNodelet::infoCallback, this);
+  }
+}
+
+void RecognitionNodelet::reconfigure(RecognitionConfig& c, uint32_t /*level*/)
+{
+  std::lock_guard<std::mutex> lock(state_mutex_);
+  ObjectRecognizer::Parameters p = recognizer_->parameters();
+  p.max_distance = c.max_distance;
+  p.verifier.min_inliers = c.min_matches;
+  p.verifier.inlier_distance = c.inlier_distance;
+  p.max_keypoints = c.max_keypoints;
+  p.time_budget_ms = c.time_budget_ms;
+  p.region_margin = c.region_margin;
+  recognizer_->setParameters(p);
+  max_regions_ = c.max_regions;
+}
+
+void RecognitionNodelet::regionsCallback(const biovision_msgs::SalientRegionArrayConstPtr& msg)
+{
+  std::lock_guard<std::mutex> lock(state_mutex_);
+  regions_ = msg;
+}
+
+void RecognitionNodelet::disparityCallback(const stereo_msgs::DisparityImageConstPtr& msg)
+{
+  std::lock_guard<std::mutex> lock(state_mutex_);
+  disparity_ = msg;
+}
+
+void RecognitionNodelet::infoCallback(const sensor_msgs::CameraInfoConstPtr& msg)
+{
+  std::lock_guard<std::mutex> lock(state_mutex_);
+  info_ = msg;
+}
+
+bool RecognitionNodelet::position(const cv::Rect& box, const cv::Size& image_size, geometry_msgs::Point& point) const
+{
+  if (!disparity_ || !info_ || !(disparity_->f > 0) || !(std::abs(disparity_->T) > 0) || !(info_->P[0] > 0) ||
+      info_->width == 0 || info_->height == 0)
+    return false;
+  cv::Mat d;
+  try
+  {
+    d = cv_bridge::toCvShare(disparity_->image, disparity_, enc::TYPE_32FC1)->image;
+  }
+  catch (const std::exception&)
+  {
+    return false;
+  }
+  // The disparity may be at another resolution than the image.
+  const double sx = double(d.cols) / image_size.width, sy = double(d.rows) / image_size.height;
+  const cv::Rect r = cv::Rect(cvRound(box.x * sx), cvRound(box.y * sy), cvRound(box.width * sx), cvRound(box.height * sy)) &
+                     cv::Rect(0, 0, d.cols, d.rows);
+  std::vector<float> values;
+  for (int y = r.y; y < r.y + r.height; ++y)
+    for (int x = r.x; x < r.x + r.width; ++x)
+    {
+      const float v = d.at<float>(y, x);
+      if (std::isfinite(v) && v > disparity_->min_disparity && v > 0)
+        values.push_back(v);
+    }
+  if (values.size() < 10)
+    return false;
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  const double disparity = values[values.size() / 2];
+  const double z = disparity_->f * std::abs(disparity_->T) / disparity;
+  // Principal point and focal length at the disparity's resolution.
+  const double fx = info_->P[0] * double(d.cols) / info_->width, fy = info_->P[5] * double(d.rows) / info_->height;
+  const double cx = info_->P[2] * double(d.cols) / info_->width, cy = info_->P[6] * double(d.rows) / info_->height;
+  const double u = (box.x + box.width / 2.0) * sx, v = (box.y + box.height / 2.0) * sy;
+  point.x = (u - cx) * z / fx;
+  point.y = (v - cy) * z / fy;
+  point.z = z;
+  return std::isfinite(point.x) && std::isfinite(point.y) && std::isfinite(point.z);
+}
+
+void RecognitionNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
+{
+  cv::Mat bgr, gray;
+  try
+  {
+    const std::string& e = msg->encoding;
+    if (e == enc::MONO8 || e == enc::MONO16 || e == enc::BGR8)
+      bgr = cv_bridge::toCvShare(msg)->image;
+    else if (e == enc::RGB8 || e == enc::RGBA8 || e == enc::BGRA8)
+      bgr = cv_bridge::toCvShare(msg, enc::BGR8)->image;
+    else
+      throw std::invalid_argument("image encoding '" + e + "' is not mono8/mono16/bgr8/rgb8(a)/bgra8");
+    gray = biovision_v1::InputImage(bgr).gray();
+  }
+  catch (const std::exception& ex)
+  {
+    diagnostics_.health().reportError(getName(), "dropping image " + std::to_string(msg->width) + "x" +
+                                       std::to_string(msg->height) + " '" + msg->encoding + "': " + ex.what());
+    return;
+  }
+
+  biovision_msgs::RecognizedObjectArray out;
+  out.header = msg->header;
+  std::vector<RecognizedObject> found;
+  std::vector<SearchRegion> regions;
+  {
+    std::lock_guard<std::mutex> lock(state_mutex_);
+    last_gray_ = gray;
+    if (regions_ && std::abs((regions_->header.stamp - msg->header.stamp).toSec()) <= max_input_age_)
+    {
+      // Region boxes are in full-resolution pixels of the region message; map them onto this image.
+      const double sx = regions_->image_width ? double(gray.cols) / regions_->image_width : 1.0;
+      const double sy = regions_->image_height ? double(gray.rows) / regions_->image_height : 1.0;
+      for (const auto& r : regions_->regions)
+      {
+        if (static_cast<int>(regions.size()) >= max_regions_)
+          break;
+        regions.push_back({cv::Rect(cvRound(r.box.x_offset * sx), cvRound(r.box.y_offset * sy),
+                                    cvRound(r.box.width * sx), cvRound(r.box.height * sy)),
+                           r.rank});
+      }
+    }
+    try
+    {
+      found = recognizer_->recognize(gray, regions, *memory_, &last_stats_);
+    }
+    catch (const std::exception& ex)
+    {
+      diagnostics_.health().reportError(getName(), std::string("recognition failed: ") + ex.what());
+      return;
+    }
+    const bool disparity_recent =
+        disparity_ && std::abs((disparity_->header.stamp - msg->header.stamp).toSec()) <= max_input_age_;
+    for (const auto& f : found)
+    {
+      biovision_msgs::RecognizedObject o;
+      o.label = f.label;
+      o.score = static_cast<float>(f.score);
+      o.matches = static_cast<uint32_t>(f.matches);
+      o.box.x_offset = static_cast<uint32_t>(f.box.x);
+      o.box.y_offset = static_cast<uint32_t>(f.box.y);
+      o.box.width = static_cast<uint32_t>(f.box.width);
+      o.box.height = static_cast<uint32_t>(f.box.height);
+      o.region_rank = f.region_rank;
+      o.has_position = disparity_recent && position(f.box, gray.size(), o.position);
+      out.objects.push_back(o);
+    }
+  }
+  last_objects_ = out.objects.size();
+  objects_pub_.publish(out);
+  diagnostics_.tick();
+
+  if (debug_pub_.getNumSubscribers() > 0)
+  {
+    cv::Mat canvas;
+    if (bgr.depth() != CV_8U)
+      bgr.convertTo(canvas, CV_8U, 1.0 / 256);
+    else
+      canvas = bgr.clone();
+    if (canvas.channels() == 1)
+      cv::cvtColor(canvas, canvas, cv::COLOR_GRAY2BGR);
+    for (const auto& r : regions)
+      cv::rectangle(canvas, r.box, cv::Scalar(255, 128, 0), 1);
+    for (const auto& f : found)
+    {
+      cv::rectangle(canvas, f.box, cv::Scalar(0, 255, 0), 2);
+      cv::putText(canvas, f.label + " " + std::to_string(f.matches), f.box.tl() + cv::Point(2, 14),
+                  cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 255, 0), 1);
+    }
+    debug_pub_.publish(cv_bridge::CvImage(msg->header, enc::BGR8, canvas).toImageMsg());
+  }
+}
+
+bool RecognitionNodelet::saveMemory(std::string& error)
+{
+  if (memory_file_.empty())
+    return true;
+  try
+  {
+    memory_->save(memory_file_);
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    error = e.what();
+    diagnostics_.health().reportError(getName(), "cannot save the object memory: " + error);
+    return false;
+  }
+}
+
+bool RecognitionNodelet::learn(biovision_msgs::LearnObject::Request& req, biovision_msgs::LearnObject::Response& res)
+{
+  std::lock_guard<std::mutex> lock(state_mutex_);
+  if (req.label.empty())
+  {
+    res.message = "empty label";
+    return true;
+  }
+  if (last_gray_.empty())
+  {
+    res.message = "no image received yet (the node subscribes to images while `objects` has a subscriber, or with ~lazy false)";
+    return true;
+  }
+  try
+  {
+    const cv::Rect box(req.box.x_offset, req.box.y_offset, req.box.width, req.box.height);
+    ObjectView view = recognizer_->describe(last_gray_, box, req.label);
+    if (static_cast<int>(view.keypoints.size()) < recognizer_->parameters().verifier.min_inliers)
+    {
+      res.message = "only " + std::to_string(view.keypoints.size()) + " keypoints in the box: too little texture to learn";
+      return true;
+    }
+    res.keypoints = static_cast<uint32_t>(view.keypoints.size());
+    memory_->addView(std::move(view));
+    std::string error;
+    res.success = saveMemory(error);
+    res.message = res.success ? "learned view " + std::to_string(memory_->viewCount(req.label)) + " of '" + req.label + "'"
+                              : "learned, but not saved: " + error;
+  }
+  catch (const std::exception& e)
+  {
+    res.message = e.what();
+  }
+  return true;
+}
+
+bool RecognitionNodelet::forget(biovision_msgs::ForgetObject::Request& req, biovision_msgs::ForgetObject::Response& res)
+{
+  std::lock_guard<std::mutex> lock(state_mutex_);
+  const size_t removed = memory_->remove(req.label);
+  if (removed == 0)
+  {
+    res.message = "no object '" + req.label + "'";
+    return true;
+  }
+  std::string error;
+  res.success = saveMemory(error);
+  res.message = "forgot " + std::to_string(removed) + " views of '" + req.label + "'" + (res.success ? "" : "; not saved: " + error);
+  return true;
+}
+
+bool RecognitionNodelet::list(biovision_msgs::ListObjects::Request&, biovision_msgs::ListObjects::Response& res)
+{
+  std::lock_guard<std::mutex> lock(state_mutex_);
+  for (const auto& label : memory_->labels())
+  {
+    res.labels.push_back(label);
+    res.views.push_back(static_cast<uint32_t>(memory_->viewCount(label)));
+    res.keypoints.push_back(static_cast<uint32_t>(memory_->keypointCount(label)));
+  }
+  return true;
+}
+
+void RecognitionNodelet::details(diagnostic_updater::DiagnosticStatusWrapper& s)
+{
+  std::lock_guard<std::mutex> lock(state_mutex_);
+  s.add("descriptor model", model_id_);
+  s.add("objects in memory", memory_->labels().size());
+  s.add("library codes", memory_->codeCount());
+  s.add("memory file", memory_file_.empty() ? std::string("(none: edits are not saved)") : memory_file_);
+  s.add("last regions processed", last_stats_.regions_processed);
+  s.add("last regions skipped", last_stats_.regions_skipped);
+  s.add("last keypoints", last_stats_.keypoints);
+  s.add("last recognition time [ms]", last_stats_.milliseconds);
+  s.add("last objects", last_objects_);
+}
+}  // namespace biovision_recognition
+
+PLUGINLIB_EXPORT_CLASS(biovision_recognition::RecognitionNodelet, nodelet::Nodelet)

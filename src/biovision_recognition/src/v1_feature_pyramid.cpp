@@ -1,0 +1,131 @@
+#include "biovision_recognition/v1_feature_pyramid.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <opencv2/imgproc.hpp>
+
+#include "biovision_v1/end_stopped_cells.hpp"
+
+namespace biovision_recognition
+{
+V1FeaturePyramid::V1FeaturePyramid(const Parameters& parameters) : parameters_(parameters)
+{
+  if (parameters.max_levels < 1 || parameters.min_level_size < 4)
+    throw std::invalid_argument("V1FeaturePyramid: max_levels must be >= 1 and min_level_size >= 4");
+  if (parameters.pooling_diameter < 1 || parameters.pooling_diameter > 16)
+    throw std::invalid_argument("V1FeaturePyramid: pooling_diameter must be in [1, 16]");
+  const int d = parameters.pooling_diameter;
+  pooling_disk_ = cv::Mat::zeros(d, d, CV_8U);
+  const double r = d / 2.0;
+  for (int y = 0; y < d; ++y)
+    for (int x = 0; x < d; ++x)
+      if ((y + 0.5 - r) * (y + 0.5 - r) + (x + 0.5 - r) * (x + 0.5 - r) <= r * r)
+        pooling_disk_.at<uint8_t>(y, x) = 1;
+}
+
+double V1FeaturePyramid::wavelengthOfLevel(int k)
+{
+  return kWavelength * std::pow(2.0, k / 2.0);
+}
+
+int V1FeaturePyramid::levelOfWavelength(double wavelength)
+{
+  if (!(wavelength > 0))
+    return 0;
+  return std::max(0, static_cast<int>(std::lround(2.0 * std::log2(wavelength / kWavelength))));
+}
+
+double V1FeaturePyramid::poolingCentreOffset() const
+{
+  // cv::dilate anchors a d x d element at (d/2, d/2): the disk's centre sits (d - 1)/2 - d/2 px from it.
+  const int d = parameters_.pooling_diameter;
+  return d / 2 - (d - 1) / 2.0;
+}
+
+cv::Point2f V1FeaturePyramid::toLevel(const cv::Point2f& p, int k) const
+{
+  const cv::Point2f s = levels_.at(k).scale;
+  return {(p.x + 0.5f) / s.x - 0.5f, (p.y + 0.5f) / s.y - 0.5f};
+}
+
+cv::Point2f V1FeaturePyramid::toImage(const cv::Point2f& p, int k) const
+{
+  const cv::Point2f s = levels_.at(k).scale;
+  return {(p.x + 0.5f) * s.x - 0.5f, (p.y + 0.5f) * s.y - 0.5f};
+}
+
+void V1FeaturePyramid::build(const cv::Mat& gray)
+{
+  if (gray.empty() || gray.type() != CV_32FC1)
+    throw std::invalid_argument("V1FeaturePyramid::build: needs a non-empty CV_32FC1 image");
+  std::vector<cv::Mat> images{gray};
+  while (static_cast<int>(images.size()) < parameters_.max_levels)
+  {
+    const size_t k = images.size();
+    cv::Mat next;
+    if (k == 1)
+    {
+      const cv::Size half_octave(static_cast<int>(std::lround(gray.cols / std::sqrt(2.0))),
+                                 static_cast<int>(std::lround(gray.rows / std::sqrt(2.0))));
+      if (std::min(half_octave.width, half_octave.height) < parameters_.min_level_size)
+        break;
+      cv::resize(gray, next, half_octave, 0, 0, cv::INTER_AREA);
+    }
+    else
+    {
+      const cv::Mat& src = images[k - 2];
+      if (std::min((src.cols + 1) / 2, (src.rows + 1) / 2) < parameters_.min_level_size)
+        break;
+      cv::pyrDown(src, next);
+    }
+    images.push_back(next);
+  }
+
+  biovision_v1::GaborParameters gabor;
+  gabor.wavelengths = {kWavelength};
+  gabor.orientations = parameters_.orientations;
+  gabor.sigma_per_wavelength = parameters_.sigma_per_wavelength;
+  gabor.aspect_ratio = parameters_.aspect_ratio;
+  gabor.support_sigmas = parameters_.support_sigmas;
+  gabor.min_grid_wavelength = 0.0;  // full resolution on every level: pooling needs every pixel
+  while (banks_.size() < images.size())
+    banks_.emplace_back(gabor);
+
+  levels_.resize(images.size());
+  for (size_t k = 0; k < images.size(); ++k)
+  {
+    Level& level = levels_[k];
+    level.image = images[k];
+    level.scale = {static_cast<float>(gray.cols) / images[k].cols, static_cast<float>(gray.rows) / images[k].rows};
+    level.responses = banks_[k].compute(images[k]).front();
+    level.pooled.resize(2 * parameters_.orientations);
+    for (int i = 0; i < parameters_.orientations; ++i)
+    {
+      cv::dilate(level.responses.even[i], level.pooled[i], pooling_disk_);
+      cv::dilate(level.responses.odd[i], level.pooled[parameters_.orientations + i], pooling_disk_);
+    }
+  }
+}
+
+std::vector<biovision_v1::Keypoint> V1FeaturePyramid::detectKeypoints(const std::vector<int>& levels) const
+{
+  std::vector<biovision_v1::Keypoint> out;
+  const biovision_v1::KeypointDetector detector(parameters_.keypoints);
+  for (int k : levels)
+  {
+    if (k < 0 || k >= this->levels())
+      continue;
+    const biovision_v1::EndStoppedCells cells(levels_[k].responses);
+    for (biovision_v1::Keypoint kp : detector.detect(levels_[k].responses, cells))
+    {
+      const cv::Point2f p = toImage({kp.x, kp.y}, k);
+      kp.x = p.x;
+      kp.y = p.y;
+      kp.wavelength = static_cast<float>(wavelengthOfLevel(k));
+      out.push_back(kp);
+    }
+  }
+  return out;
+}
+}  // namespace biovision_recognition

@@ -1,0 +1,178 @@
+// Integration: learn a real COIL object through the service from a published scene, recognise another
+// view of it inside a salient region, list and forget it; bad input leaves the node running.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <mutex>
+
+#include <biovision_msgs/ForgetObject.h>
+#include <biovision_msgs/LearnObject.h>
+#include <biovision_msgs/ListObjects.h>
+#include <biovision_msgs/RecognizedObjectArray.h>
+#include <biovision_msgs/SalientRegionArray.h>
+#include <cv_bridge/cv_bridge.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <ros/ros.h>
+
+namespace
+{
+std::string coil(const std::string& name)
+{
+  const char* env = std::getenv("BIOVISION_SHARED");
+  return std::string(env ? env : BIOVISION_DEFAULT_SHARED) + "/data/objects/coil100/" + name;
+}
+
+cv::Mat scene(const std::string& object, cv::Point at)
+{
+  cv::Mat noise(240, 320, CV_8UC3);
+  cv::randu(noise, cv::Scalar::all(90), cv::Scalar::all(150));
+  cv::GaussianBlur(noise, noise, cv::Size(), 5.0);
+  const cv::Mat obj = cv::imread(coil(object), cv::IMREAD_COLOR);
+  EXPECT_FALSE(obj.empty()) << coil(object);
+  if (!obj.empty())
+    obj.copyTo(noise(cv::Rect(at, obj.size())));
+  return noise;
+}
+
+class RecognitionNode : public testing::Test
+{
+protected:
+  void SetUp() override
+  {
+    image_pub_ = nh_.advertise<sensor_msgs::Image>("camera/image", 2);
+    regions_pub_ = nh_.advertise<biovision_msgs::SalientRegionArray>("saliency/regions", 2);
+    objects_sub_ = nh_.subscribe<biovision_msgs::RecognizedObjectArray>(
+        "objects", 10, [this](const biovision_msgs::RecognizedObjectArrayConstPtr& m) {
+          std::lock_guard<std::mutex> lock(mutex_);
+          last_ = m;
+        });
+    ASSERT_TRUE(ros::service::waitForService("recognition/learn_object", ros::Duration(30)));
+    for (int i = 0; i < 100 && (image_pub_.getNumSubscribers() == 0 || objects_sub_.getNumPublishers() == 0); ++i)
+      ros::Duration(0.1).sleep();
+  }
+
+  /// Publishes the image (and regions with its stamp) until an objects message for it arrives.
+  biovision_msgs::RecognizedObjectArrayConstPtr show(const cv::Mat& image, const std::vector<cv::Rect>& regions = {})
+  {
+    const ros::Time stamp = ros::Time::now();
+    std_msgs::Header header;
+    header.stamp = stamp;
+    header.frame_id = "left_camera_optical_frame";
+    biovision_msgs::SalientRegionArray r;
+    r.header = header;
+    r.image_width = image.cols;
+    r.image_height = image.rows;
+    for (size_t i = 0; i < regions.size(); ++i)
+    {
+      biovision_msgs::SalientRegion s;
+      s.rank = static_cast<uint32_t>(i);
+      s.box.x_offset = regions[i].x;
+      s.box.y_offset = regions[i].y;
+      s.box.width = regions[i].width;
+      s.box.height = regions[i].height;
+      r.regions.push_back(s);
+    }
+    for (int attempt = 0; attempt < 50; ++attempt)
+    {
+      if (!regions.empty())
+        regions_pub_.publish(r);
+      ros::Duration(0.05).sleep();
+      image_pub_.publish(cv_bridge::CvImage(header, "bgr8", image).toImageMsg());
+      for (int wait = 0; wait < 20; ++wait)
+      {
+        ros::Duration(0.05).sleep();
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (last_ && last_->header.stamp == stamp)
+          return last_;
+      }
+    }
+    return nullptr;
+  }
+
+  ros::NodeHandle nh_;
+  ros::Publisher image_pub_, regions_pub_;
+  ros::Subscriber objects_sub_;
+  std::mutex mutex_;
+  biovision_msgs::RecognizedObjectArrayConstPtr last_;
+};
+}  // namespace
+
+TEST_F(RecognitionNode, LearnsRecognisesListsAndForgetsARealObject)
+{
+  ros::AsyncSpinner spinner(1);
+  spinner.start();
+  // Learn obj1 (view 0 deg) and obj4 from published scenes, through the service.
+  ASSERT_TRUE(show(scene("obj1__0.png", {40, 60})));
+  biovision_msgs::LearnObject learn;
+  learn.request.label = "obj1";
+  learn.request.box.x_offset = 40;
+  learn.request.box.y_offset = 60;
+  learn.request.box.width = 128;
+  learn.request.box.height = 128;
+  ASSERT_TRUE(ros::service::call("recognition/learn_object", learn));
+  ASSERT_TRUE(learn.response.success) << learn.response.message;
+  EXPECT_GT(learn.response.keypoints, 10u);
+  ASSERT_TRUE(show(scene("obj4__0.png", {150, 50})));
+  learn.request.label = "obj4";
+  learn.request.box.x_offset = 150;
+  learn.request.box.y_offset = 50;
+  ASSERT_TRUE(ros::service::call("recognition/learn_object", learn));
+  ASSERT_TRUE(learn.response.success) << learn.response.message;
+
+  biovision_msgs::ListObjects list;
+  ASSERT_TRUE(ros::service::call("recognition/list_objects", list));
+  EXPECT_EQ(list.response.labels, (std::vector<std::string>{"obj1", "obj4"}));
+  EXPECT_EQ(list.response.views, (std::vector<uint32_t>{1, 1}));
+
+  // Another view (10 deg on) of obj1 elsewhere, inside the first salient region.
+  const cv::Rect truth(170, 80, 128, 128);
+  const auto seen = show(scene("obj1__10.png", truth.tl()), {cv::Rect(150, 60, 160, 170), cv::Rect(0, 0, 60, 60)});
+  ASSERT_TRUE(seen);
+  ASSERT_EQ(seen->objects.size(), 1u);
+  EXPECT_EQ(seen->objects[0].label, "obj1");
+  EXPECT_EQ(seen->objects[0].region_rank, 0u);
+  EXPECT_GE(seen->objects[0].matches, 5u);
+  const cv::Rect box(seen->objects[0].box.x_offset, seen->objects[0].box.y_offset, seen->objects[0].box.width,
+                     seen->objects[0].box.height);
+  EXPECT_GT((box & truth).area(), truth.area() / 2);
+  EXPECT_FALSE(seen->objects[0].has_position);  // no disparity published
+
+  // The memory file was written (atomically) and holds both objects.
+  std::string memory_file;
+  ASSERT_TRUE(ros::param::get("~memory_file", memory_file));
+  EXPECT_TRUE(std::filesystem::exists(memory_file));
+
+  // Forget it: the same scene now gives no label.
+  biovision_msgs::ForgetObject forget;
+  forget.request.label = "obj1";
+  ASSERT_TRUE(ros::service::call("recognition/forget_object", forget));
+  EXPECT_TRUE(forget.response.success) << forget.response.message;
+  const auto after = show(scene("obj1__10.png", truth.tl()), {cv::Rect(150, 60, 160, 170)});
+  ASSERT_TRUE(after);
+  for (const auto& o : after->objects)
+    EXPECT_NE(o.label, "obj1");
+
+  // Bad input: an unsupported encoding and a tiny image are dropped; the node still answers.
+  sensor_msgs::Image bad;
+  bad.header.stamp = ros::Time::now();
+  bad.encoding = "32SC1";
+  bad.width = 4;
+  bad.height = 4;
+  bad.step = 16;
+  bad.data.resize(64);
+  image_pub_.publish(bad);
+  image_pub_.publish(cv_bridge::CvImage(bad.header, "bgr8", cv::Mat(3, 3, CV_8UC3, cv::Scalar::all(7))).toImageMsg());
+  ros::Duration(0.5).sleep();
+  ASSERT_TRUE(ros::service::call("recognition/list_objects", list));
+  EXPECT_EQ(list.response.labels, (std::vector<std::string>{"obj4"}));
+  std::filesystem::remove(memory_file);
+}
+
+int main(int argc, char** argv)
+{
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "recognition_node_test");
+  return RUN_ALL_TESTS();
+}

@@ -1,0 +1,247 @@
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include <opencv2/imgproc.hpp>
+
+#include "biovision_recognition/hamming_kernel.hpp"
+#include "biovision_recognition/lda_hash_trainer.hpp"
+#include "biovision_recognition/pooled_cell_features.hpp"
+#include "biovision_recognition/projection_kernel.hpp"
+#include "biovision_recognition/v1_descriptor.hpp"
+
+using namespace biovision_recognition;
+
+namespace
+{
+/// Smooth random texture in [0.2, 0.8]: plenty of V1 keypoints at every scale.
+cv::Mat texture(int w, int h, unsigned seed)
+{
+  cv::Mat n(h, w, CV_32F);
+  cv::RNG rng(seed);
+  rng.fill(n, cv::RNG::NORMAL, 0.0, 1.0);
+  cv::Mat fine, coarse;
+  cv::GaussianBlur(n, fine, cv::Size(), 1.5);
+  cv::GaussianBlur(n, coarse, cv::Size(), 5.0);
+  cv::Mat t = fine * 2.0 + coarse * 8.0;
+  cv::normalize(t, t, 0.2, 0.8, cv::NORM_MINMAX);
+  return t;
+}
+
+biovision_v1::Keypoint at(float x, float y, float wavelength)
+{
+  biovision_v1::Keypoint k;
+  k.x = x;
+  k.y = y;
+  k.wavelength = wavelength;
+  return k;
+}
+
+std::string modelPath()
+{
+  return BIOVISION_RECOGNITION_MODEL;
+}
+}  // namespace
+
+TEST(V1FeaturePyramid, HalfOctaveLevelsAndCoordinates)
+{
+  EXPECT_NEAR(V1FeaturePyramid::wavelengthOfLevel(0), 4.0, 1e-12);
+  EXPECT_NEAR(V1FeaturePyramid::wavelengthOfLevel(1), 4.0 * std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(V1FeaturePyramid::wavelengthOfLevel(6), 32.0, 1e-12);
+  EXPECT_EQ(V1FeaturePyramid::levelOfWavelength(6.0), 1);   // the source's 6 is level 1 (5.66)
+  EXPECT_EQ(V1FeaturePyramid::levelOfWavelength(12.0), 3);
+  EXPECT_EQ(V1FeaturePyramid::levelOfWavelength(24.0), 5);
+  V1FeaturePyramid pyramid;
+  pyramid.build(texture(200, 150, 1));
+  ASSERT_GE(pyramid.levels(), 6);
+  EXPECT_EQ(pyramid.responses(2).gridSize(), cv::Size(100, 75));
+  const cv::Point2f p(123.25f, 77.5f);
+  for (int k = 0; k < pyramid.levels(); ++k)
+  {
+    const cv::Point2f back = pyramid.toImage(pyramid.toLevel(p, k), k);
+    EXPECT_NEAR(back.x, p.x, 1e-3);
+    EXPECT_NEAR(back.y, p.y, 1e-3);
+  }
+  EXPECT_THROW(pyramid.build(cv::Mat()), std::invalid_argument);
+}
+
+TEST(PooledCellFeatures, LayoutSizes)
+{
+  DescriptorLayout layout;
+  EXPECT_EQ(layout.gridSide(0), 15);  // 32 px patch, diameter 4, step 2: the source's 15 x 15 fields
+  EXPECT_EQ(layout.gridSide(2), 7);
+  EXPECT_EQ(layout.gridSide(6), 1);
+  EXPECT_EQ(layout.featureCount(), 16 * (225 + 100 + 49 + 16 + 9 + 1 + 1));
+  layout.scales = {0};
+  EXPECT_EQ(layout.featureCount(), 3600);
+  layout.scales = {2, 1};
+  EXPECT_THROW(layout.validate(), std::invalid_argument);
+}
+
+TEST(PooledCellFeatures, InvariantToBrightnessOffsetAndContrastGain)
+{
+  const cv::Mat image = texture(160, 160, 2);
+  const DescriptorLayout layout;
+  const PooledCellFeatures features(layout);
+  V1FeaturePyramid a, b;
+  a.build(image);
+  b.build(image * 0.5 + 0.3);  // half the contrast, brighter
+  const std::vector<biovision_v1::Keypoint> kps{at(80, 80, 4.f), at(60, 90, 5.66f), at(100, 70, 8.f)};
+  const cv::Mat xa = features.extract(a, kps), xb = features.extract(b, kps);
+  ASSERT_EQ(xa.cols, layout.featureCount());
+  for (int r = 0; r < xa.rows; ++r)
+  {
+    EXPECT_GT(cv::norm(xa.row(r)), 1.0);  // unit per scale: the vector has real content
+    EXPECT_LT(cv::norm(xa.row(r) - xb.row(r)), 1e-3 * cv::norm(xa.row(r)));
+  }
+}
+
+TEST(LdaHashTrainer, FindsTheKnownProjectionOnSyntheticGaussianClasses)
+{
+  // 8 features; class identity lives in features 0 and 1 (unit variance, tiny within-class noise); features
+  // 2..7 are pure within-class noise as large as the signal. The projection must ignore 2..7.
+  std::mt19937 rng(4);
+  std::normal_distribution<float> g;
+  const int n = 4000, d = 8;
+  LdaHashTrainer::Matrix pa(n, d), pb(n, d), na(n, d), nb(n, d);
+  auto sample = [&](float z0, float z1, LdaHashTrainer::Matrix& m, int row) {
+    m(row, 0) = z0 + 0.05f * g(rng);
+    m(row, 1) = z1 + 0.05f * g(rng);
+    for (int c = 2; c < d; ++c)
+      m(row, c) = g(rng);
+  };
+  for (int i = 0; i < n; ++i)
+  {
+    const float z0 = g(rng), z1 = g(rng);
+    sample(z0, z1, pa, i);
+    sample(z0, z1, pb, i);
+    sample(z0, z1, na, i);
+    sample(g(rng), g(rng), nb, i);
+  }
+  LdaHashTrainer::Parameters p;
+  p.bits = 2;
+  p.whitening_rank = 8;
+  const DescriptorModel m = LdaHashTrainer(p).train(pa, pb, na, nb);
+  ASSERT_EQ(m.projection.rows(), 2);
+  for (int b = 0; b < 2; ++b)
+  {
+    const float signal = m.projection.row(b).head(2).norm(), noise = m.projection.row(b).tail(6).norm();
+    EXPECT_LT(noise, 0.05f * signal) << "bit " << b;
+  }
+  // Both bits fire for about half the data: thresholds near the (zero) mean of the projections.
+  const Eigen::VectorXf y = m.projection * pa.row(0).transpose();
+  (void)y;
+  for (int b = 0; b < 2; ++b)
+  {
+    const Eigen::VectorXf proj = pa * m.projection.row(b).transpose();
+    const double ones = (proj.array() > m.thresholds(b)).cast<double>().mean();
+    EXPECT_NEAR(ones, 0.5, 0.1);
+  }
+}
+
+TEST(LdaHashTrainer, ThresholdsSeparateWhatTheyShould)
+{
+  // One dimension: matching pairs sit together on either side of 1.0, non-matching pairs straddle it.
+  LdaHashTrainer::Parameters p;
+  p.threshold_candidates = 1001;
+  const int n = 200;
+  LdaHashTrainer::Matrix ya(n, 1), yb(n, 1), za(n, 1), zb(n, 1);
+  for (int i = 0; i < n; ++i)
+  {
+    const float side = (i % 2) ? 2.0f : 0.0f;
+    ya(i, 0) = side + 0.01f * (i % 7);
+    yb(i, 0) = side + 0.02f * (i % 5);
+    za(i, 0) = 0.1f * (i % 3);
+    zb(i, 0) = 1.9f + 0.05f * (i % 4);
+  }
+  const float t = LdaHashTrainer(p).thresholds(ya, yb, za, zb)(0);
+  EXPECT_GT(t, 0.2f);
+  EXPECT_LT(t, 1.9f);
+}
+
+class TrainedDescriptor : public testing::Test
+{
+protected:
+  void SetUp() override { descriptor_ = std::make_unique<V1Descriptor>(DescriptorModel::load(modelPath())); }
+  std::unique_ptr<V1Descriptor> descriptor_;
+};
+
+TEST_F(TrainedDescriptor, ShiftedAndSlightlyRotatedCopiesMatchADifferentPatchDoesNot)
+{
+  ASSERT_EQ(descriptor_->model().bits(), 128);
+  const cv::Mat image = texture(240, 240, 5);
+  // Shift by (7, -5) px and rotate by 5 degrees about the centre.
+  cv::Mat shifted, rotated;
+  const cv::Matx23d shift(1, 0, 7, 0, 1, -5);
+  cv::warpAffine(image, shifted, shift, image.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT);
+  const cv::Mat rot = cv::getRotationMatrix2D(cv::Point2f(120, 120), 5.0, 1.0);
+  cv::warpAffine(image, rotated, rot, image.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT);
+  V1FeaturePyramid p0(descriptor_->pyramidParameters()), p1 = p0, p2 = p0;
+  p0.build(image);
+  p1.build(shifted);
+  p2.build(rotated);
+  int matched_shift = 0, matched_rot = 0, rejected_other = 0, total = 0;
+  for (float lambda : {5.66f, 8.f, 11.31f})
+    for (int i = 0; i < 5; ++i)
+    {
+      const cv::Point2f p(90.f + 15 * i, 100.f + 9 * i);
+      const cv::Point2f ps(p.x + 7, p.y - 5);
+      const cv::Point2f pr(static_cast<float>(rot.at<double>(0, 0) * p.x + rot.at<double>(0, 1) * p.y + rot.at<double>(0, 2)),
+                           static_cast<float>(rot.at<double>(1, 0) * p.x + rot.at<double>(1, 1) * p.y + rot.at<double>(1, 2)));
+      const auto c0 = descriptor_->compute(p0, {at(p.x, p.y, lambda)});
+      const auto c1 = descriptor_->compute(p1, {at(ps.x, ps.y, lambda)});
+      const auto c2 = descriptor_->compute(p2, {at(pr.x, pr.y, lambda)});
+      // A different place of the same texture, 50 px away.
+      const auto c3 = descriptor_->compute(p0, {at(p.x + 50, p.y - 40, lambda)});
+      matched_shift += hammingDistanceReference(c0.code(0), c1.code(0), 2) <= 24;
+      matched_rot += hammingDistanceReference(c0.code(0), c2.code(0), 2) <= 24;
+      rejected_other += hammingDistanceReference(c0.code(0), c3.code(0), 2) > 24;
+      ++total;
+    }
+  EXPECT_GE(matched_shift, total * 9 / 10);
+  EXPECT_GE(matched_rot, total * 7 / 10);
+  EXPECT_GE(rejected_other, total * 9 / 10);
+}
+
+TEST_F(TrainedDescriptor, CodeIsInvariantToBrightnessAndContrast)
+{
+  const cv::Mat image = texture(200, 200, 6);
+  V1FeaturePyramid a(descriptor_->pyramidParameters()), b = a;
+  a.build(image);
+  b.build(image * 0.6 + 0.25);
+  std::vector<biovision_v1::Keypoint> kps;
+  for (int i = 0; i < 20; ++i)
+    kps.push_back(at(40.f + 6 * i, 60.f + 4 * i, i % 2 ? 5.66f : 8.f));
+  const auto ca = descriptor_->compute(a, kps), cb = descriptor_->compute(b, kps);
+  for (size_t i = 0; i < kps.size(); ++i)
+    EXPECT_LE(hammingDistanceReference(ca.code(i), cb.code(i), 2), 2) << "keypoint " << i;
+}
+
+TEST_F(TrainedDescriptor, ProvenanceRecordsTheTrainingCommand)
+{
+  EXPECT_NE(descriptor_->model().provenance.find("train_descriptor"), std::string::npos);
+}
+
+TEST(ProjectionKernel, EqualsADoublePrecisionReference)
+{
+  std::mt19937 rng(8);
+  std::normal_distribution<float> g;
+  for (size_t rows : {size_t(1), size_t(5), size_t(9)})
+  {
+    const size_t inputs = 2500, outputs = 13;  // more than one tile, odd sizes
+    std::vector<float> x(rows * inputs), p(outputs * inputs), y(rows * outputs);
+    for (auto& v : x)
+      v = g(rng);
+    for (auto& v : p)
+      v = g(rng);
+    projectRows(x.data(), rows, inputs, p.data(), outputs, y.data());
+    for (size_t i = 0; i < rows; ++i)
+      for (size_t b = 0; b < outputs; ++b)
+      {
+        double ref = 0.0;
+        for (size_t k = 0; k < inputs; ++k)
+          ref += double(x[i * inputs + k]) * p[b * inputs + k];
+        EXPECT_NEAR(y[i * outputs + b], ref, 1e-3 * std::sqrt(double(inputs)));
+      }
+  }
+}

@@ -1,0 +1,138 @@
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include <opencv2/imgproc.hpp>
+
+#include "biovision_recognition/geometric_verifier.hpp"
+#include "biovision_recognition/object_recognizer.hpp"
+
+using namespace biovision_recognition;
+
+namespace
+{
+/// A distinctive synthetic "object": random filled shapes and lines of random grey levels.
+cv::Mat objectImage(int size, unsigned seed)
+{
+  cv::Mat img(size, size, CV_32F, cv::Scalar(0.5));
+  cv::RNG rng(seed);
+  for (int i = 0; i < 40; ++i)
+  {
+    const cv::Point c(rng.uniform(0, size), rng.uniform(0, size));
+    const double v = rng.uniform(0.05, 0.95);
+    switch (i % 3)
+    {
+      case 0:
+        cv::circle(img, c, rng.uniform(3, size / 6), v, cv::FILLED);
+        break;
+      case 1:
+        cv::rectangle(img, cv::Rect(c.x, c.y, rng.uniform(4, size / 4), rng.uniform(4, size / 4)), v, cv::FILLED);
+        break;
+      default:
+        cv::line(img, c, cv::Point(rng.uniform(0, size), rng.uniform(0, size)), v, rng.uniform(1, 4));
+    }
+  }
+  cv::GaussianBlur(img, img, cv::Size(), 0.8);
+  return img;
+}
+
+cv::Mat background(int w, int h, unsigned seed)
+{
+  cv::Mat n(h, w, CV_32F);
+  cv::RNG rng(seed);
+  rng.fill(n, cv::RNG::NORMAL, 0.5, 0.08);
+  cv::GaussianBlur(n, n, cv::Size(), 6.0);
+  cv::normalize(n, n, 0.35, 0.65, cv::NORM_MINMAX);
+  return n;
+}
+
+std::shared_ptr<const V1Descriptor> trainedDescriptor()
+{
+  static auto d = std::make_shared<const V1Descriptor>(DescriptorModel::load(BIOVISION_RECOGNITION_MODEL));
+  return d;
+}
+}  // namespace
+
+TEST(GeometricVerifier, AcceptsASimilarityWithOutliersRejectsAScrambledSet)
+{
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<float> u(0.f, 100.f);
+  const double angle = 0.3, scale = 1.4;
+  const cv::Matx23d t(scale * std::cos(angle), -scale * std::sin(angle), 20, scale * std::sin(angle),
+                      scale * std::cos(angle), -5);
+  std::vector<cv::Point2f> from, to;
+  for (int i = 0; i < 30; ++i)
+  {
+    const cv::Point2f p(u(rng), u(rng));
+    from.push_back(p);
+    to.emplace_back(static_cast<float>(t(0, 0) * p.x + t(0, 1) * p.y + t(0, 2)),
+                    static_cast<float>(t(1, 0) * p.x + t(1, 1) * p.y + t(1, 2)));
+  }
+  for (int i = 0; i < 10; ++i)  // outliers
+  {
+    from.emplace_back(u(rng), u(rng));
+    to.emplace_back(u(rng) * 2, u(rng) * 2);
+  }
+  const GeometricVerifier verifier;
+  const auto ok = verifier.verify(from, to);
+  EXPECT_TRUE(ok.accepted);
+  EXPECT_GE(ok.inliers, 30);
+  EXPECT_LE(ok.inliers, 32);
+  EXPECT_NEAR(ok.transform(0, 2), 20.0, 0.5);
+  // The same points with the correspondences shuffled: no consensus.
+  std::vector<cv::Point2f> scrambled = to;
+  std::shuffle(scrambled.begin(), scrambled.end(), rng);
+  EXPECT_FALSE(verifier.verify(from, scrambled).accepted);
+  EXPECT_FALSE(verifier.verify({}, {}).accepted);
+  EXPECT_THROW(verifier.verify(from, {}), std::invalid_argument);
+}
+
+TEST(ObjectRecognizer, FindsALearnedObjectInAScenePutsTheBoxOnItAndStaysSilentWithoutIt)
+{
+  ObjectRecognizer recognizer(trainedDescriptor(), ObjectRecognizer::Parameters());
+  ObjectMemory memory(128, trainedDescriptor()->model().id());
+  const cv::Mat cup = objectImage(96, 11), book = objectImage(96, 12);
+  memory.addView(recognizer.describe(cup, cv::Rect(), "cup"));
+  memory.addView(recognizer.describe(book, cv::Rect(), "book"));
+  ASSERT_GT(memory.keypointCount("cup"), 30u);
+
+  cv::Mat scene = background(320, 240, 3);
+  cup.copyTo(scene(cv::Rect(180, 90, 96, 96)));
+  const auto found = recognizer.recognize(scene, {{cv::Rect(160, 70, 140, 140), 0}}, memory);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0].label, "cup");
+  EXPECT_GE(found[0].matches, 5);
+  EXPECT_GT(found[0].score, 0.0);
+  EXPECT_LE(found[0].score, 1.0);
+  const cv::Rect truth(180, 90, 96, 96);
+  EXPECT_GT((found[0].box & truth).area(), 0.7 * truth.area());
+
+  // Whole image when no region is given; a region elsewhere sees nothing.
+  const auto whole = recognizer.recognize(scene, {}, memory);
+  ASSERT_EQ(whole.size(), 1u);
+  EXPECT_EQ(whole[0].label, "cup");
+  EXPECT_TRUE(recognizer.recognize(scene, {{cv::Rect(0, 0, 150, 150), 1}}, memory).empty());
+  // A scene with neither object: no label.
+  const cv::Mat other = background(320, 240, 4);
+  cv::Mat third = other.clone();
+  objectImage(96, 13).copyTo(third(cv::Rect(100, 60, 96, 96)));
+  EXPECT_TRUE(recognizer.recognize(third, {}, memory).empty());
+}
+
+TEST(ObjectRecognizer, DefinedBehaviourForOddRegionsAndEmptyMemory)
+{
+  ObjectRecognizer recognizer(trainedDescriptor(), ObjectRecognizer::Parameters());
+  ObjectMemory memory(128, trainedDescriptor()->model().id());
+  const cv::Mat scene = background(160, 120, 5);
+  ObjectRecognizer::Statistics stats;
+  EXPECT_TRUE(recognizer.recognize(scene, {}, memory, &stats).empty());  // empty memory
+  memory.addView(recognizer.describe(objectImage(96, 11), cv::Rect(), "cup"));
+  const std::vector<SearchRegion> odd{{cv::Rect(500, 500, 50, 50), 0},  // outside
+                                      {cv::Rect(10, 10, 0, 0), 1},      // empty
+                                      {cv::Rect(10, 10, 5, 5), 2},      // tiny
+                                      {cv::Rect(-50, -50, 400, 400), 3}};  // larger than the image
+  EXPECT_NO_THROW(recognizer.recognize(scene, odd, memory, &stats));
+  EXPECT_EQ(stats.regions_skipped, 3);
+  EXPECT_EQ(stats.regions_processed, 1);
+  EXPECT_THROW(recognizer.describe(scene, cv::Rect(400, 400, 20, 20), "x"), std::invalid_argument);
+}

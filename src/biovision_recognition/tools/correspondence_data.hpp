@@ -1,0 +1,87 @@
+#pragma once
+
+// Image pairs with exact correspondence (Middlebury ground-truth disparities, HPatches homographies) for
+// train_descriptor and descriptor_eval, split into disjoint training and test parts.
+
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "biovision_recognition/pair_sampler.hpp"
+#include "biovision_stereo/middlebury_dataset.hpp"
+#include "biovision_v1/input_image.hpp"
+
+namespace biovision_recognition
+{
+struct CorrespondencePair
+{
+  std::string name;
+  cv::Mat a, b;                // 8-bit BGR
+  cv::Mat homography;          // 3x3 CV_64F, A -> B; empty for stereo
+  cv::Mat disparity, valid;    // stereo ground truth (left = A)
+};
+
+/// Which part of a dataset: scenes in name order alternate train, test, train, ...
+inline bool inPart(size_t index, const std::string& part)
+{
+  return part == "all" || (part == "train" && index % 2 == 0) || (part == "test" && index % 2 == 1);
+}
+
+inline cv::Mat readHomography(const std::string& path)
+{
+  std::ifstream in(path);
+  cv::Mat h(3, 3, CV_64F);
+  for (int i = 0; i < 9; ++i)
+    if (!(in >> h.at<double>(i / 3, i % 3)))
+      throw std::runtime_error(path + ": expected 9 numbers");
+  return h;
+}
+
+/// stereo_dir: a folder of Middlebury scenes (any layout MiddleburyDataset reads); sequence_dir: an
+/// HPatches (1.ppm + H_1_k) or Oxford (img1.png + H1to2p) folder; targets: which k pair with image 1.
+inline std::vector<CorrespondencePair> loadCorrespondencePairs(const std::string& stereo_dir, const std::string& part,
+                                                               const std::string& sequence_dir,
+                                                               const std::vector<int>& targets)
+{
+  std::vector<CorrespondencePair> pairs;
+  if (!stereo_dir.empty())
+  {
+    const auto scenes = biovision_stereo::MiddleburyDataset::load(stereo_dir);
+    for (size_t i = 0; i < scenes.size(); ++i)
+      if (inPart(i, part))
+        pairs.push_back({"stereo/" + scenes[i].name, scenes[i].left, scenes[i].right, cv::Mat(),
+                         scenes[i].ground_truth, scenes[i].nonoccluded});
+  }
+  if (!sequence_dir.empty())
+  {
+    const bool oxford = std::ifstream(sequence_dir + "/img1.png").good();
+    const cv::Mat first = cv::imread(sequence_dir + (oxford ? "/img1.png" : "/1.ppm"), cv::IMREAD_COLOR);
+    if (first.empty())
+      throw std::runtime_error(sequence_dir + ": neither 1.ppm nor img1.png");
+    for (int k : targets)
+    {
+      const std::string image = sequence_dir + (oxford ? "/img" + std::to_string(k) + ".png" : "/" + std::to_string(k) + ".ppm");
+      const std::string h = sequence_dir + (oxford ? "/H1to" + std::to_string(k) + "p" : "/H_1_" + std::to_string(k));
+      CorrespondencePair p;
+      p.name = "sequence/1-" + std::to_string(k);
+      p.a = first;
+      p.b = cv::imread(image, cv::IMREAD_COLOR);
+      if (p.b.empty())
+        throw std::runtime_error(image + ": cannot read");
+      p.homography = readHomography(h);
+      pairs.push_back(p);
+    }
+  }
+  return pairs;
+}
+
+inline PairSampler::Pairs samplePairs(PairSampler& sampler, const CorrespondencePair& pair, const V1FeaturePyramid& a,
+                                      const V1FeaturePyramid& b)
+{
+  return pair.homography.empty() ? sampler.fromDisparity(a, b, pair.disparity, pair.valid)
+                                 : sampler.fromHomography(a, b, pair.homography);
+}
+}  // namespace biovision_recognition

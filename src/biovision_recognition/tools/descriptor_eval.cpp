@@ -1,0 +1,275 @@
+// Matching performance of the V1 descriptor against OpenCV's ORB, BRISK, AKAZE and SIFT on the same V1
+// keypoints of real image pairs with exact correspondence (test part: disjoint from training).
+
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <map>
+
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "biovision_recognition/v1_descriptor.hpp"
+#include "correspondence_data.hpp"
+#include "tool_arguments.hpp"
+
+using namespace biovision_recognition;
+
+namespace
+{
+const char* kUsage =
+    "usage: descriptor_eval --models LIST [--stereo DIR] [--sequence DIR] [options]\n"
+    "  --models LIST      trained descriptor models (comma-separated); each is a method named by its file stem\n"
+    "  --stereo DIR       folder of Middlebury scenes;   --part P: test (default), train or all\n"
+    "  --sequence DIR     HPatches (1.ppm, H_1_k) or Oxford (img1.png, H1to2p) sequence\n"
+    "  --targets LIST     sequence images paired with image 1 (default 4,5,6: 2,3 are the training part)\n"
+    "  --levels LIST      keypoint pyramid levels (default 0,1,2,3,4)\n"
+    "  --pairs N          pairs of each kind per image pair (default 500)\n"
+    "  --peers LIST       OpenCV peers (default orb,brisk,akaze,sift)\n"
+    "  --json FILE        results\n"
+    "Every method describes the same keypoints, upright, with the same support (8 keypoint wavelengths).\n";
+
+struct Scores
+{
+  std::vector<float> positive, negative;
+  double seconds = 0.0;
+  size_t keypoints = 0;
+  bool binary = true;
+};
+
+/// Per keypoint, its descriptor row (or -1 when the method dropped it).
+struct Described
+{
+  cv::Mat descriptors;
+  std::vector<int> row;
+};
+
+cv::KeyPoint toCv(const biovision_v1::Keypoint& kp, const std::string& method, int index)
+{
+  const float support = 8.f * kp.wavelength;  // the V1 descriptor's patch side
+  cv::KeyPoint k(cv::Point2f(kp.x, kp.y), support, 0.f, kp.strength, 0, index);
+  if (method == "orb")
+    k.octave = std::clamp(static_cast<int>(std::lround(std::log(support / 31.f) / std::log(1.2f))), 0, 7);
+  else if (method == "sift")
+    k.size = support / 6.f;  // SIFT's window is ~6 x size wide
+  else if (method == "akaze")
+  {
+    // MLDB's window is ~10 x size wide; class_id must be the scale-space level (sigma = 1.6 * 2^(i/4)).
+    const double sigma = support / 10.0 / 1.5;
+    const int i = std::clamp(static_cast<int>(std::lround(4 * std::log2(sigma / 1.6))), 0, 15);
+    k.class_id = i;
+    k.octave = i / 4;
+    k.size = static_cast<float>(1.6 * std::pow(2.0, i / 4.0) * 1.5);
+  }
+  return k;
+}
+
+Described describePeer(const std::string& method, const cv::Mat& image, const std::vector<biovision_v1::Keypoint>& kps,
+                       double& seconds)
+{
+  cv::Ptr<cv::Feature2D> f;
+  if (method == "orb")
+    f = cv::ORB::create();
+  else if (method == "brisk")
+    f = cv::BRISK::create();
+  else if (method == "akaze")
+    f = cv::AKAZE::create(cv::AKAZE::DESCRIPTOR_MLDB_UPRIGHT);
+  else if (method == "sift")
+    f = cv::SIFT::create();
+  else
+    throw std::runtime_error("unknown peer " + method);
+  std::vector<cv::KeyPoint> cv_kps;
+  for (size_t i = 0; i < kps.size(); ++i)
+    cv_kps.push_back(toCv(kps[i], method, static_cast<int>(i)));
+  cv::Mat gray;
+  cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
+  Described d;
+  const auto t0 = std::chrono::steady_clock::now();
+  f->compute(gray, cv_kps, d.descriptors);
+  seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  d.row.assign(kps.size(), -1);
+  if (method == "akaze")
+  {
+    // AKAZE keeps every keypoint in order (class_id holds its level, not our index).
+    if (cv_kps.size() != kps.size())
+      throw std::runtime_error("AKAZE dropped keypoints");
+    for (size_t i = 0; i < kps.size(); ++i)
+      d.row[i] = static_cast<int>(i);
+  }
+  else
+    for (size_t r = 0; r < cv_kps.size(); ++r)
+      d.row[cv_kps[r].class_id] = static_cast<int>(r);
+  return d;
+}
+
+float distance(const Described& a, int ia, const Described& b, int ib)
+{
+  const cv::Mat ra = a.descriptors.row(a.row[ia]), rb = b.descriptors.row(b.row[ib]);
+  return static_cast<float>(cv::norm(ra, rb, ra.type() == CV_8U ? cv::NORM_HAMMING : cv::NORM_L2));
+}
+
+double fpr95(std::vector<float> pos, const std::vector<float>& neg)
+{
+  if (pos.empty() || neg.empty())
+    return 1.0;
+  std::sort(pos.begin(), pos.end());
+  const float t = pos[static_cast<size_t>(std::ceil(0.95 * pos.size())) - 1];
+  return static_cast<double>(std::count_if(neg.begin(), neg.end(), [t](float d) { return d <= t; })) / neg.size();
+}
+
+double rocArea(const std::vector<float>& pos, std::vector<float> neg)
+{
+  // P(d_negative > d_positive), ties half.
+  std::sort(neg.begin(), neg.end());
+  double sum = 0.0;
+  for (float p : pos)
+  {
+    const auto lo = std::lower_bound(neg.begin(), neg.end(), p), hi = std::upper_bound(neg.begin(), neg.end(), p);
+    sum += (neg.end() - hi) + 0.5 * (hi - lo);
+  }
+  return pos.empty() || neg.empty() ? 0.0 : sum / (double(pos.size()) * neg.size());
+}
+
+std::vector<std::string> splitList(const std::string& s)
+{
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ','))
+    if (!item.empty())
+      out.push_back(item);
+  return out;
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  const ToolArguments args(argc, argv, kUsage,
+                           {"--models", "--stereo", "--sequence", "--part", "--targets", "--levels", "--pairs", "--peers",
+                            "--json"});
+  if (!args.has("--models") || (!args.has("--stereo") && !args.has("--sequence")))
+  {
+    std::cerr << kUsage;
+    return 2;
+  }
+  try
+  {
+    std::vector<std::pair<std::string, std::unique_ptr<V1Descriptor>>> ours;
+    for (const auto& path : splitList(args.get("--models")))
+    {
+      std::string stem = path.substr(path.find_last_of('/') + 1);
+      stem = stem.substr(0, stem.find('.'));
+      ours.emplace_back(stem, std::make_unique<V1Descriptor>(DescriptorModel::load(path)));
+    }
+    const auto peers = splitList(args.get("--peers", "orb,brisk,akaze,sift"));
+    PairSampler::Parameters sp;
+    sp.levels = args.integers("--levels", sp.levels);
+    sp.max_pairs = static_cast<int>(args.number("--pairs", 500));
+    PairSampler sampler(sp);
+    const auto pairs = loadCorrespondencePairs(args.get("--stereo"), args.get("--part", "test"), args.get("--sequence"),
+                                               args.integers("--targets", {4, 5, 6}));
+    std::map<std::string, Scores> scores;
+    std::map<std::string, std::map<std::string, double>> per_pair_fpr;
+    V1FeaturePyramid pa(ours.front().second->pyramidParameters()), pb(ours.front().second->pyramidParameters());
+    for (const auto& pair : pairs)
+    {
+      const cv::Mat ga = biovision_v1::InputImage(pair.a).gray(), gb = biovision_v1::InputImage(pair.b).gray();
+      pa.build(ga);
+      pb.build(gb);
+      const auto p = samplePairs(sampler, pair, pa, pb);
+      const size_t n = p.positive_a.size();
+      // Image B's keypoints: positives then negatives.
+      std::vector<biovision_v1::Keypoint> kb = p.positive_b;
+      kb.insert(kb.end(), p.negative_b.begin(), p.negative_b.end());
+
+      std::map<std::string, std::pair<Described, Described>> described;
+      std::map<std::string, double> seconds;
+      for (const auto& [name, descriptor] : ours)
+      {
+        auto run = [&](const cv::Mat& gray, V1FeaturePyramid& pyr, const std::vector<biovision_v1::Keypoint>& kps) {
+          const auto t0 = std::chrono::steady_clock::now();
+          pyr.build(gray);  // timed: building the cells is part of describing
+          const BinaryCodeSet codes = descriptor->compute(pyr, kps);
+          seconds[name] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+          Described d;
+          d.descriptors = cv::Mat(static_cast<int>(codes.size()), codes.words() * 8, CV_8U);
+          std::memcpy(d.descriptors.data, codes.data(), codes.size() * codes.words() * 8);
+          d.row.resize(kps.size());
+          for (size_t i = 0; i < kps.size(); ++i)
+            d.row[i] = static_cast<int>(i);
+          return d;
+        };
+        described[name] = {run(ga, pa, p.positive_a), run(gb, pb, kb)};
+      }
+      for (const auto& m : peers)
+        described[m] = {describePeer(m, pair.a, p.positive_a, seconds[m]), describePeer(m, pair.b, kb, seconds[m])};
+      // Only pairs every method described.
+      std::vector<size_t> kept;
+      for (size_t i = 0; i < n; ++i)
+      {
+        bool all = true;
+        for (const auto& [m, d] : described)
+          all = all && d.first.row[i] >= 0 && d.second.row[i] >= 0 && d.second.row[n + i] >= 0;
+        if (all)
+          kept.push_back(i);
+      }
+      for (auto& [m, d] : described)
+      {
+        Scores& s = scores[m];
+        s.seconds += seconds[m];
+        s.keypoints += n + kb.size();
+        s.binary = d.first.descriptors.type() == CV_8U;
+        Scores local;
+        for (size_t i : kept)
+        {
+          local.positive.push_back(distance(d.first, static_cast<int>(i), d.second, static_cast<int>(i)));
+          local.negative.push_back(distance(d.first, static_cast<int>(i), d.second, static_cast<int>(n + i)));
+        }
+        per_pair_fpr[pair.name][m] = fpr95(local.positive, local.negative);
+        s.positive.insert(s.positive.end(), local.positive.begin(), local.positive.end());
+        s.negative.insert(s.negative.end(), local.negative.begin(), local.negative.end());
+      }
+      std::cerr << pair.name << ": " << kept.size() << " of " << n << " pairs described by every method\n";
+    }
+    std::ostringstream json;
+    json << std::setprecision(5) << "{\n  \"command\": \"rosrun biovision_recognition descriptor_eval " << args.command()
+         << "\",\n";
+    std::cout << std::left << std::setw(22) << "method" << std::setw(10) << "fpr95" << std::setw(10) << "roc_auc"
+              << std::setw(14) << "us/keypoint" << "pairs\n";
+    for (const auto& [m, s] : scores)
+    {
+      const double f = fpr95(s.positive, s.negative), auc = rocArea(s.positive, s.negative);
+      const double us = 1e6 * s.seconds / std::max<size_t>(1, s.keypoints);
+      std::cout << std::setw(22) << m << std::setw(10) << f << std::setw(10) << auc << std::setw(14) << us
+                << s.positive.size() << "\n";
+      json << "  \"" << m << "\": {\"fpr95\": " << f << ", \"roc_auc\": " << auc << ", \"us_per_keypoint\": " << us
+           << ", \"pairs\": " << s.positive.size() << ", \"binary\": " << (s.binary ? "true" : "false") << "},\n";
+    }
+    json << "  \"notes\": \"fpr95 = false-positive rate at 95% recall; lower is better. Test part only (odd scenes, sequence 1-4..1-6), disjoint from training. Goal: the lowest fpr95 of the binary descriptors (sift is float, for reference).\",\n";
+    json << "  \"scenes\": {";
+    bool first = true;
+    for (const auto& [name, fprs] : per_pair_fpr)
+    {
+      json << (first ? "\n" : ",\n") << "    \"" << name << "\": {";
+      bool f2 = true;
+      for (const auto& [m, v] : fprs)
+      {
+        json << (f2 ? "" : ", ") << "\"" << m << "\": " << v;
+        f2 = false;
+      }
+      json << "}";
+      first = false;
+    }
+    json << "\n  }\n}\n";
+    if (args.has("--json"))
+      std::ofstream(args.get("--json")) << json.str();
+  }
+  catch (const std::exception& e)
+  {
+    std::cerr << "descriptor_eval: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

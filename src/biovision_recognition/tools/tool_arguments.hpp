@@ -1,0 +1,87 @@
+#pragma once
+
+// Command-line parsing shared by the recognition tools: --name value pairs and flags, with a usage text.
+
+#include <dirent.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <iostream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace biovision_recognition
+{
+class ToolArguments
+{
+public:
+  /// Exits with the usage (status 0 for --help, 2 for an unknown option or a missing value).
+  ToolArguments(int argc, char** argv, const std::string& usage, const std::set<std::string>& options,
+                const std::set<std::string>& flags = {})
+  {
+    for (int i = 1; i < argc; ++i)
+    {
+      const std::string a = argv[i];
+      if (a == "--help" || a == "-h")
+      {
+        std::cout << usage;
+        std::exit(0);
+      }
+      if (flags.count(a))
+        values_[a] = "1";
+      else if (options.count(a) && i + 1 < argc)
+        values_[a] = argv[++i];
+      else
+      {
+        std::cerr << argv[0] << ": unknown option or missing value: " << a << "\n" << usage;
+        std::exit(2);
+      }
+      command_ += (command_.empty() ? "" : " ") + a + (flags.count(a) ? "" : " " + values_[a]);
+    }
+  }
+  bool has(const std::string& name) const { return values_.count(name) > 0; }
+  std::string get(const std::string& name, const std::string& fallback = "") const
+  {
+    auto it = values_.find(name);
+    return it == values_.end() ? fallback : it->second;
+  }
+  double number(const std::string& name, double fallback) const
+  {
+    return has(name) ? std::atof(get(name).c_str()) : fallback;
+  }
+  std::vector<int> integers(const std::string& name, const std::vector<int>& fallback) const
+  {
+    if (!has(name))
+      return fallback;
+    std::vector<int> out;
+    std::stringstream ss(get(name));
+    std::string item;
+    while (std::getline(ss, item, ','))
+      out.push_back(std::atoi(item.c_str()));
+    return out;
+  }
+  /// The options as given, for recording how a result was made.
+  const std::string& command() const { return command_; }
+
+private:
+  std::map<std::string, std::string> values_;
+  std::string command_;
+};
+/// Entries of a folder (no hidden ones), in name order; empty when it cannot be read.
+inline std::vector<std::string> listDirectory(const std::string& dir)
+{
+  std::vector<std::string> names;
+  if (DIR* d = opendir(dir.c_str()))
+  {
+    while (dirent* e = readdir(d))
+      if (e->d_name[0] != '.')
+        names.push_back(e->d_name);
+    closedir(d);
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+}  // namespace biovision_recognition

@@ -27,6 +27,7 @@ const char* kUsage =
     "  --levels LIST         pyramid levels keypoints are detected at (default 0,1,2,3,4)\n"
     "  --pairs N             pairs of each kind per image pair (default 1500)\n"
     "  --rank N              eigenpairs of Sigma_N kept for the whitening (default 512)\n"
+    "  --ridge R             whitening ridge, relative to Sigma_N's largest eigenvalue (default 1e-3)\n"
     "  --threads N           threads for Eigen's products (default 2)\n"
 
     "  --json FILE           training statistics\n";
@@ -46,7 +47,7 @@ int main(int argc, char** argv)
 {
   const ToolArguments args(argc, argv, kUsage,
                            {"--out", "--stereo", "--sequence", "--part", "--targets", "--bits", "--scales", "--levels",
-                            "--pairs", "--rank", "--threads", "--json"});
+                            "--pairs", "--rank", "--ridge", "--threads", "--json"});
   if (!args.has("--out") || (!args.has("--stereo") && !args.has("--sequence")))
   {
     std::cerr << kUsage;
@@ -88,6 +89,7 @@ int main(int argc, char** argv)
     LdaHashTrainer::Parameters tp;
     tp.bits = static_cast<int>(args.number("--bits", 128));
     tp.whitening_rank = static_cast<int>(args.number("--rank", 512));
+    tp.ridge = args.number("--ridge", tp.ridge);
     const LdaHashTrainer trainer(tp);
     DescriptorModel model = trainer.train(xa, xb, ya, yb);
     model.layout = layout;

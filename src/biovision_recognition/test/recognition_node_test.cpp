@@ -15,6 +15,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <ros/ros.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <stereo_msgs/DisparityImage.h>
 
 namespace
 {
@@ -43,6 +45,8 @@ protected:
   {
     image_pub_ = nh_.advertise<sensor_msgs::Image>("camera/image", 2);
     regions_pub_ = nh_.advertise<biovision_msgs::SalientRegionArray>("saliency/regions", 2);
+    disparity_pub_ = nh_.advertise<stereo_msgs::DisparityImage>("disparity", 2);
+    info_pub_ = nh_.advertise<sensor_msgs::CameraInfo>("camera_info", 2);
     objects_sub_ = nh_.subscribe<biovision_msgs::RecognizedObjectArray>(
         "objects", 10, [this](const biovision_msgs::RecognizedObjectArrayConstPtr& m) {
           std::lock_guard<std::mutex> lock(mutex_);
@@ -54,7 +58,8 @@ protected:
   }
 
   /// Publishes the image (and regions with its stamp) until an objects message for it arrives.
-  biovision_msgs::RecognizedObjectArrayConstPtr show(const cv::Mat& image, const std::vector<cv::Rect>& regions = {})
+  biovision_msgs::RecognizedObjectArrayConstPtr show(const cv::Mat& image, const std::vector<cv::Rect>& regions = {},
+                                                      float disparity = 0.f)
   {
     const ros::Time stamp = ros::Time::now();
     std_msgs::Header header;
@@ -78,6 +83,24 @@ protected:
     {
       if (!regions.empty())
         regions_pub_.publish(r);
+      if (disparity > 0)
+      {
+        // A flat scene at disparity d: depth f T / d everywhere.
+        sensor_msgs::CameraInfo info;
+        info.header = header;
+        info.width = image.cols;
+        info.height = image.rows;
+        info.P = {200, 0, 160, 0, 0, 200, 120, 0, 0, 0, 1, 0};
+        info_pub_.publish(info);
+        stereo_msgs::DisparityImage d;
+        d.header = header;
+        d.f = 200.f;
+        d.T = 0.12f;
+        d.min_disparity = 0.f;
+        d.max_disparity = 64.f;
+        d.image = *cv_bridge::CvImage(header, "32FC1", cv::Mat(image.size(), CV_32F, cv::Scalar(disparity))).toImageMsg();
+        disparity_pub_.publish(d);
+      }
       ros::Duration(0.05).sleep();
       image_pub_.publish(cv_bridge::CvImage(header, "bgr8", image).toImageMsg());
       for (int wait = 0; wait < 20; ++wait)
@@ -92,7 +115,7 @@ protected:
   }
 
   ros::NodeHandle nh_;
-  ros::Publisher image_pub_, regions_pub_;
+  ros::Publisher image_pub_, regions_pub_, disparity_pub_, info_pub_;
   ros::Subscriber objects_sub_;
   std::mutex mutex_;
   biovision_msgs::RecognizedObjectArrayConstPtr last_;
@@ -138,6 +161,16 @@ TEST_F(RecognitionNode, LearnsRecognisesListsAndForgetsARealObject)
                      seen->objects[0].box.height);
   EXPECT_GT((box & truth).area(), truth.area() / 2);
   EXPECT_FALSE(seen->objects[0].has_position);  // no disparity published
+
+  // With disparity and camera_info: the box centre in the camera frame, z = f T / d = 200 * 0.12 / 20.
+  const auto placed = show(scene("obj1__10.png", truth.tl()), {cv::Rect(150, 60, 160, 170)}, 20.f);
+  ASSERT_TRUE(placed);
+  ASSERT_EQ(placed->objects.size(), 1u);
+  ASSERT_TRUE(placed->objects[0].has_position);
+  const auto& o = placed->objects[0];
+  EXPECT_NEAR(o.position.z, 1.2, 1e-3);
+  EXPECT_NEAR(o.position.x, (o.box.x_offset + o.box.width / 2.0 - 160.0) * 1.2 / 200.0, 1e-3);
+  EXPECT_NEAR(o.position.y, (o.box.y_offset + o.box.height / 2.0 - 120.0) * 1.2 / 200.0, 1e-3);
 
   // The memory file was written (atomically) and holds both objects.
   std::string memory_file;

@@ -7,7 +7,8 @@ export PATH=/usr/bin:/bin:$PATH
 set +u; source devel/setup.bash; set -u
 export ROS_HOME=${ROS_HOME:-$PWD/build/ros_home}
 mkdir -p "$out" "$ROS_HOME"
-rm -f "$out/report.json" "$out/report.md" "$out/fixations.json" "$out/fixations.md" "$out/pan.csv"
+rm -f "$out/report.json" "$out/report.md" "$out/fixations.json" "$out/fixations.md" "$out/pan.csv" \
+  "$out/recognition.json" "$out/recognition.md" "$out/objects.bin"
 # A private master port so a demo never talks to a roscore the user already runs.
 port=$((20000 + RANDOM % 20000))
 export ROS_MASTER_URI=http://localhost:$port
@@ -21,4 +22,5 @@ if [[ ! -f "$out/report.json" ]]; then
 fi
 cat "$out/report.md"
 [[ -f "$out/fixations.md" ]] && { echo; cat "$out/fixations.md"; }
+[[ -f "$out/recognition.md" ]] && { echo; cat "$out/recognition.md"; }
 /usr/bin/python3 -c 'import json,sys; sys.exit(0 if json.load(open(sys.argv[1]))["ok"] else 1)' "$out/report.json"

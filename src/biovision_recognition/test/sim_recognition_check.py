@@ -1,0 +1,40 @@
+#!/usr/bin/python3
+"""Waits until the teacher has taught objects and recognition has named them: at least 2 objects taught,
+at least 20 correct labels over at least 2 objects, and never a wrong one (the teacher's summary)."""
+import json
+import os
+import sys
+import time
+import unittest
+
+import rospy
+import rostest
+
+
+class SimRecognition(unittest.TestCase):
+    def test_taught_objects_are_recognised_and_nothing_is_misnamed(self):
+        path = rospy.get_param("~summary")
+        if os.path.exists(path):
+            os.remove(path)  # a previous run's
+        deadline = time.time() + 120.0
+        summary = {}
+        while time.time() < deadline and not rospy.is_shutdown():
+            time.sleep(2.0)
+            try:
+                with open(path) as f:
+                    summary = json.load(f)
+            except (OSError, ValueError):
+                continue
+            named = [k for k, v in summary["per_label"].items() if v["correct"] > 0]
+            if len(summary["taught"]) >= 2 and summary["correct"] >= 20 and len(named) >= 2:
+                break
+        self.assertTrue(summary, "the teacher wrote no summary")
+        self.assertGreaterEqual(len(summary["taught"]), 2, summary)
+        self.assertGreaterEqual(summary["correct"], 20, summary)
+        self.assertGreaterEqual(len([k for k, v in summary["per_label"].items() if v["correct"] > 0]), 2, summary)
+        self.assertEqual(summary["wrong"], 0, summary)
+
+
+if __name__ == "__main__":
+    rospy.init_node("sim_recognition_check")
+    rostest.rosrun("biovision_recognition", "sim_recognition", SimRecognition, sys.argv)

@@ -29,7 +29,8 @@ const char* kUsage =
     "  --pairs N          pairs of each kind per image pair (default 500)\n"
     "  --peers LIST       OpenCV peers (default orb,brisk,akaze,sift)\n"
     "  --json FILE        results\n"
-    "Every method describes the same keypoints, upright, with the same support (8 keypoint wavelengths).\n";
+    "Every method describes the same keypoints, upright, with the same support (the first model's patch,\n"
+    "8 keypoint wavelengths for the committed ones).\n";
 
 struct Scores
 {
@@ -46,9 +47,9 @@ struct Described
   std::vector<int> row;
 };
 
-cv::KeyPoint toCv(const biovision_v1::Keypoint& kp, const std::string& method, int index)
+cv::KeyPoint toCv(const biovision_v1::Keypoint& kp, const std::string& method, int index, float patch_wavelengths)
 {
-  const float support = 8.f * kp.wavelength;  // the V1 descriptor's patch side
+  const float support = patch_wavelengths * kp.wavelength;  // the V1 descriptor's patch side
   cv::KeyPoint k(cv::Point2f(kp.x, kp.y), support, 0.f, kp.strength, 0, index);
   if (method == "orb")
     k.octave = std::clamp(static_cast<int>(std::lround(std::log(support / 31.f) / std::log(1.2f))), 0, 7);
@@ -67,7 +68,7 @@ cv::KeyPoint toCv(const biovision_v1::Keypoint& kp, const std::string& method, i
 }
 
 Described describePeer(const std::string& method, const cv::Mat& image, const std::vector<biovision_v1::Keypoint>& kps,
-                       double& seconds)
+                       float patch_wavelengths, double& seconds)
 {
   cv::Ptr<cv::Feature2D> f;
   if (method == "orb")
@@ -82,7 +83,7 @@ Described describePeer(const std::string& method, const cv::Mat& image, const st
     throw std::runtime_error("unknown peer " + method);
   std::vector<cv::KeyPoint> cv_kps;
   for (size_t i = 0; i < kps.size(); ++i)
-    cv_kps.push_back(toCv(kps[i], method, static_cast<int>(i)));
+    cv_kps.push_back(toCv(kps[i], method, static_cast<int>(i), patch_wavelengths));
   cv::Mat gray;
   cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
   Described d;
@@ -172,6 +173,8 @@ int main(int argc, char** argv)
                                                args.integers("--targets", {4, 5, 6}));
     std::map<std::string, Scores> scores;
     std::map<std::string, std::map<std::string, double>> per_pair_fpr;
+    // Peers get the first model's support (patch side in keypoint wavelengths).
+    const float support = static_cast<float>(ours.front().second->model().layout.patch_wavelengths);
     V1FeaturePyramid pa(ours.front().second->pyramidParameters()), pb(ours.front().second->pyramidParameters());
     for (const auto& pair : pairs)
     {
@@ -204,7 +207,8 @@ int main(int argc, char** argv)
         described[name] = {run(ga, pa, p.positive_a), run(gb, pb, kb)};
       }
       for (const auto& m : peers)
-        described[m] = {describePeer(m, pair.a, p.positive_a, seconds[m]), describePeer(m, pair.b, kb, seconds[m])};
+        described[m] = {describePeer(m, pair.a, p.positive_a, support, seconds[m]),
+                        describePeer(m, pair.b, kb, support, seconds[m])};
       // Only pairs every method described.
       std::vector<size_t> kept;
       for (size_t i = 0; i < n; ++i)

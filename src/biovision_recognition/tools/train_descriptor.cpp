@@ -25,6 +25,8 @@ const char* kUsage =
     "  --bits N              64, 128 (default) or 256\n"
     "  --scales LIST         descriptor scales j, lambda = 4 * 2^(j/2) of the 32 px patch (default 0,1,2,3,4,5,6)\n"
     "  --levels LIST         pyramid levels keypoints are detected at (default 0,1,2,3,4)\n"
+    "  --patch W             patch side in keypoint wavelengths (default 8: 32 px at lambda 4)\n"
+    "  --pooling D,S         pooling disk diameter and step in level px (default 4,2)\n"
     "  --pairs N             pairs of each kind per image pair (default 1500)\n"
     "  --rank N              eigenpairs of Sigma_N kept for the whitening (default 512)\n"
     "  --ridge R             whitening ridge, relative to Sigma_N's largest eigenvalue (default 1e-3)\n"
@@ -47,7 +49,7 @@ int main(int argc, char** argv)
 {
   const ToolArguments args(argc, argv, kUsage,
                            {"--out", "--stereo", "--sequence", "--part", "--targets", "--bits", "--scales", "--levels",
-                            "--pairs", "--rank", "--ridge", "--threads", "--json"});
+                            "--pairs", "--rank", "--ridge", "--threads", "--patch", "--pooling", "--json"});
   if (!args.has("--out") || (!args.has("--stereo") && !args.has("--sequence")))
   {
     std::cerr << kUsage;
@@ -59,6 +61,12 @@ int main(int argc, char** argv)
   {
     DescriptorLayout layout;
     layout.scales = args.integers("--scales", layout.scales);
+    layout.patch_wavelengths = args.number("--patch", layout.patch_wavelengths);
+    const std::vector<int> pooling = args.integers("--pooling", {layout.pooling_diameter, layout.pooling_step});
+    if (pooling.size() != 2)
+      throw std::invalid_argument("--pooling takes D,S");
+    layout.pooling_diameter = pooling[0];
+    layout.pooling_step = pooling[1];
     const PooledCellFeatures features(layout);
     PairSampler::Parameters sp;
     sp.levels = args.integers("--levels", sp.levels);

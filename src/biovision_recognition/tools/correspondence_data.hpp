@@ -41,10 +41,11 @@ inline cv::Mat readHomography(const std::string& path)
 }
 
 /// stereo_dir: a folder of Middlebury scenes (any layout MiddleburyDataset reads); sequence_dir: an
-/// HPatches (1.ppm + H_1_k) or Oxford (img1.png + H1to2p) folder; targets: which k pair with image 1.
+/// HPatches (1.ppm + H_1_k) or Oxford (img1.png + H1to2p) folder; targets: which k pair with image 1
+/// (all_pairs: every ordered pair of image 1 and the targets, both directions).
 inline std::vector<CorrespondencePair> loadCorrespondencePairs(const std::string& stereo_dir, const std::string& part,
                                                                const std::string& sequence_dir,
-                                                               const std::vector<int>& targets)
+                                                               const std::vector<int>& targets, bool all_pairs = false)
 {
   std::vector<CorrespondencePair> pairs;
   if (!stereo_dir.empty())
@@ -61,19 +62,31 @@ inline std::vector<CorrespondencePair> loadCorrespondencePairs(const std::string
     const cv::Mat first = cv::imread(sequence_dir + (oxford ? "/img1.png" : "/1.ppm"), cv::IMREAD_COLOR);
     if (first.empty())
       throw std::runtime_error(sequence_dir + ": neither 1.ppm nor img1.png");
+    // Image k and H_1_k of every target (image 1: identity).
+    std::vector<std::pair<cv::Mat, cv::Mat>> views{{first, cv::Mat::eye(3, 3, CV_64F)}};
+    std::vector<int> index{1};
     for (int k : targets)
     {
       const std::string image = sequence_dir + (oxford ? "/img" + std::to_string(k) + ".png" : "/" + std::to_string(k) + ".ppm");
       const std::string h = sequence_dir + (oxford ? "/H1to" + std::to_string(k) + "p" : "/H_1_" + std::to_string(k));
-      CorrespondencePair p;
-      p.name = "sequence/1-" + std::to_string(k);
-      p.a = first;
-      p.b = cv::imread(image, cv::IMREAD_COLOR);
-      if (p.b.empty())
+      views.emplace_back(cv::imread(image, cv::IMREAD_COLOR), readHomography(h));
+      if (views.back().first.empty())
         throw std::runtime_error(image + ": cannot read");
-      p.homography = readHomography(h);
-      pairs.push_back(p);
+      index.push_back(k);
     }
+    // 1-k pairs; with all_pairs also every other ordered pair of these images, H_i_j = H_1_j H_1_i^-1.
+    for (size_t i = 0; i < views.size(); ++i)
+      for (size_t j = 0; j < views.size(); ++j)
+      {
+        if (i == j || (!all_pairs && i != 0))
+          continue;
+        CorrespondencePair p;
+        p.name = "sequence/" + std::to_string(index[i]) + "-" + std::to_string(index[j]);
+        p.a = views[i].first;
+        p.b = views[j].first;
+        p.homography = views[j].second * views[i].second.inv();
+        pairs.push_back(p);
+      }
   }
   return pairs;
 }

@@ -22,6 +22,7 @@ const char* kUsage =
     "  --sequence DIR        HPatches/Oxford sequence (homographies give the pairs)\n"
     "  --part P              train (default), test or all: scenes alternate train/test in name order\n"
     "  --targets LIST        sequence images paired with image 1 (default 2,3: 4,5,6 are the test part)\n"
+    "  --all-pairs           every ordered pair of image 1 and the targets (1-2, 2-1, 2-3, ...), not only 1-k\n"
     "  --bits N              64, 128 (default) or 256\n"
     "  --scales LIST         descriptor scales j, lambda = 4 * 2^(j/2) of the 32 px patch (default 0,1,2,3,4,5,6)\n"
     "  --levels LIST         pyramid levels keypoints are detected at (default 0,1,2,3,4)\n"
@@ -49,7 +50,8 @@ int main(int argc, char** argv)
 {
   const ToolArguments args(argc, argv, kUsage,
                            {"--out", "--stereo", "--sequence", "--part", "--targets", "--bits", "--scales", "--levels",
-                            "--pairs", "--rank", "--ridge", "--threads", "--patch", "--pooling", "--json"});
+                            "--pairs", "--rank", "--ridge", "--threads", "--patch", "--pooling", "--json"},
+                           {"--all-pairs"});
   if (!args.has("--out") || (!args.has("--stereo") && !args.has("--sequence")))
   {
     std::cerr << kUsage;
@@ -78,7 +80,7 @@ int main(int argc, char** argv)
     V1FeaturePyramid pa(pp), pb(pp);
 
     auto pairs = loadCorrespondencePairs(args.get("--stereo"), args.get("--part", "train"), args.get("--sequence"),
-                                         args.integers("--targets", {2, 3}));
+                                         args.integers("--targets", {2, 3}), args.has("--all-pairs"));
 
     Matrix xa, xb, ya, yb;
     for (const auto& pair : pairs)

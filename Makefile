@@ -14,7 +14,11 @@ all: build
 setup:
 	@bash scripts/setup.sh
 
+# devel/lib/python3/dist-packages must exist before CMake's first configure: catkin bakes PYTHONPATH into
+# build/catkin_generated/setup_cached.sh (used by `make run_tests`) only for directories that exist then,
+# so on a fresh clone Python nodes could not import the generated biovision_msgs in rostests.
 build: setup
+	@mkdir -p devel/lib/python3/dist-packages
 	@catkin_make -j$(JOBS) $(CATKIN_ARGS) all tests 2>&1 | grep -vE "^make\[|Built target|^-- " ; test $${PIPESTATUS[0]} -eq 0
 
 demo: build

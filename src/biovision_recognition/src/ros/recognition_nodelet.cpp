@@ -62,18 +62,16 @@ void RecognitionNodelet::onInit()
   forget_srv_ = nh.advertiseService("recognition/forget_object", &RecognitionNodelet::forget, this);
   list_srv_ = nh.advertiseService("recognition/list_objects", &RecognitionNodelet::list, this);
 
-  std::lock_guard<std::mutex> lock(connect_mutex_);
-  auto connect = [this](const auto&) { connectCallback(); };
-  objects_pub_ = nh.advertise<biovision_msgs::RecognizedObjectArray>(
-      "objects", 5, ros::SubscriberStatusCallback(connect), ros::SubscriberStatusCallback(connect));
-  debug_pub_ = it_->advertise("recognition/debug_image", 1, image_transport::SubscriberStatusCallback(connect),
-                              image_transport::SubscriberStatusCallback(connect));
-  if (!lazy_)
   {
-    connect_mutex_.unlock();
-    connectCallback();
-    connect_mutex_.lock();
+    std::lock_guard<std::mutex> lock(connect_mutex_);
+    auto connect = [this](const auto&) { connectCallback(); };
+    objects_pub_ = nh.advertise<biovision_msgs::RecognizedObjectArray>(
+        "objects", 5, ros::SubscriberStatusCallback(connect), ros::SubscriberStatusCallback(connect));
+    debug_pub_ = it_->advertise("recognition/debug_image", 1, image_transport::SubscriberStatusCallback(connect),
+                                image_transport::SubscriberStatusCallback(connect));
   }
+  if (!lazy_)
+    connectCallback();  // subscribe now: learning needs images even without a consumer
 }
 
 void RecognitionNodelet::connectCallback()

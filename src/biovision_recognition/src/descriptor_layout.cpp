@@ -35,5 +35,7 @@ void DescriptorLayout::validate() const
     throw std::invalid_argument("DescriptorLayout: patch_wavelengths must be in (0, 32]");
   if (pooling_diameter < 1 || pooling_diameter > 16 || pooling_step < 1 || pooling_step > 16)
     throw std::invalid_argument("DescriptorLayout: pooling diameter and step must be in [1, 16]");
+  if (gridSide(0) > kMaxGridSide)
+    throw std::invalid_argument("DescriptorLayout: more than 128 pooling fields per side");
 }
 }  // namespace biovision_recognition

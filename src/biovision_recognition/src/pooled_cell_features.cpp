@@ -4,21 +4,24 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <opencv2/core/utility.hpp>
+
 namespace biovision_recognition
 {
 namespace
 {
-float sampleClamped(const cv::Mat& m, float x, float y)
+/// Bilinear sample positions along one axis, clamped to the map: p is read from [i0, i1] with weight f.
+struct AxisSample
 {
-  x = std::min(std::max(x, 0.f), static_cast<float>(m.cols - 1));
-  y = std::min(std::max(y, 0.f), static_cast<float>(m.rows - 1));
-  const int x0 = std::min(static_cast<int>(x), m.cols - 2 < 0 ? 0 : m.cols - 2);
-  const int y0 = std::min(static_cast<int>(y), m.rows - 2 < 0 ? 0 : m.rows - 2);
-  const int x1 = std::min(x0 + 1, m.cols - 1), y1 = std::min(y0 + 1, m.rows - 1);
-  const float fx = x - x0, fy = y - y0;
-  const float* r0 = m.ptr<float>(y0);
-  const float* r1 = m.ptr<float>(y1);
-  return (1 - fy) * ((1 - fx) * r0[x0] + fx * r0[x1]) + fy * ((1 - fx) * r1[x0] + fx * r1[x1]);
+  int i0, i1;
+  float f;
+};
+
+AxisSample axisSample(float v, int size)
+{
+  v = std::min(std::max(v, 0.f), static_cast<float>(size - 1));
+  const int i0 = std::min(static_cast<int>(v), size - 2 < 0 ? 0 : size - 2);
+  return {i0, std::min(i0 + 1, size - 1), v - i0};
 }
 }  // namespace
 
@@ -44,13 +47,29 @@ void PooledCellFeatures::sampleLevels(const V1FeaturePyramid& pyramid, const cv:
     const cv::Point2f c = pyramid.toLevel(position, k);
     const float step = layout_.pooling_step * size_ratio;
     const float first = -0.5f * (n - 1) * step;
+    // The grid is separable: its sample columns and rows (and their weights) are the same for every
+    // channel, so they are worked out once per scale.
+    const cv::Size size = pyramid.pooled(k)[0].size();
+    AxisSample xs[DescriptorLayout::kMaxGridSide], ys[DescriptorLayout::kMaxGridSide];
+    for (int g = 0; g < n; ++g)
+    {
+      xs[g] = axisSample(c.x + first + g * step + centre_offset, size.width);
+      ys[g] = axisSample(c.y + first + g * step + centre_offset, size.height);
+    }
     for (int ch = 0; ch < channels; ++ch)
     {
       const cv::Mat& map = pyramid.pooled(k)[ch];
       for (int gy = 0; gy < n; ++gy)
+      {
+        const float* r0 = map.ptr<float>(ys[gy].i0);
+        const float* r1 = map.ptr<float>(ys[gy].i1);
+        const float fy = ys[gy].f;
         for (int gx = 0; gx < n; ++gx)
-          *out++ = sampleClamped(map, c.x + first + gx * step + centre_offset,
-                                   c.y + first + gy * step + centre_offset);
+        {
+          const AxisSample& x = xs[gx];
+          *out++ = (1 - fy) * ((1 - x.f) * r0[x.i0] + x.f * r0[x.i1]) + fy * ((1 - x.f) * r1[x.i0] + x.f * r1[x.i1]);
+        }
+      }
     }
   }
 }
@@ -88,8 +107,11 @@ cv::Mat PooledCellFeatures::extract(const V1FeaturePyramid& pyramid,
                                     const std::vector<biovision_v1::Keypoint>& keypoints) const
 {
   cv::Mat x(static_cast<int>(keypoints.size()), layout_.featureCount(), CV_32F);
-  for (size_t i = 0; i < keypoints.size(); ++i)
-    extract(pyramid, keypoints[i], x.ptr<float>(static_cast<int>(i)));
+  // Keypoints are independent: both cores (cv::parallel_for_ follows cv::setNumThreads).
+  cv::parallel_for_(cv::Range(0, static_cast<int>(keypoints.size())), [&](const cv::Range& r) {
+    for (int i = r.start; i < r.end; ++i)
+      extract(pyramid, keypoints[i], x.ptr<float>(i));
+  });
   return x;
 }
 }  // namespace biovision_recognition

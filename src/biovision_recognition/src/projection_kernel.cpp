@@ -3,15 +3,20 @@
 #include <algorithm>
 #include <cstring>
 
+#include <opencv2/core/utility.hpp>
+
 namespace biovision_recognition
 {
 namespace
 {
+constexpr size_t kRowsPerTask = 64;
 // 1024 inputs x 128 outputs x 4 bytes = 512 KiB of P per tile: within L2.
 constexpr size_t kTile = 1024;
 }  // namespace
 
-__attribute__((target_clones("arch=skylake-avx512", "arch=haswell", "default"))) void projectRows(
+namespace
+{
+__attribute__((target_clones("arch=skylake-avx512", "arch=haswell", "default"))) void projectBlock(
     const float* x, size_t rows, size_t inputs, const float* p, size_t outputs, float* y)
 {
   std::memset(y, 0, rows * outputs * sizeof(float));
@@ -86,5 +91,19 @@ __attribute__((target_clones("arch=skylake-avx512", "arch=haswell", "default")))
       }
     }
   }
+}
+}  // namespace
+
+void projectRows(const float* x, size_t rows, size_t inputs, const float* p, size_t outputs, float* y)
+{
+  // Blocks of rows are independent: both cores (cv::parallel_for_ follows cv::setNumThreads).
+  const int tasks = static_cast<int>((rows + kRowsPerTask - 1) / kRowsPerTask);
+  cv::parallel_for_(cv::Range(0, tasks), [&](const cv::Range& r) {
+    for (int t = r.start; t < r.end; ++t)
+    {
+      const size_t first = t * kRowsPerTask, n = std::min(kRowsPerTask, rows - first);
+      projectBlock(x + first * inputs, n, inputs, p, outputs, y + first * outputs);
+    }
+  });
 }
 }  // namespace biovision_recognition

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "biovision_v1/end_stopped_cells.hpp"
@@ -110,22 +111,29 @@ void V1FeaturePyramid::build(const cv::Mat& gray)
 
 std::vector<biovision_v1::Keypoint> V1FeaturePyramid::detectKeypoints(const std::vector<int>& levels) const
 {
-  std::vector<biovision_v1::Keypoint> out;
   const biovision_v1::KeypointDetector detector(parameters_.keypoints);
-  for (int k : levels)
-  {
-    if (k < 0 || k >= this->levels())
-      continue;
-    const biovision_v1::EndStoppedCells cells(levels_[k].responses);
-    for (biovision_v1::Keypoint kp : detector.detect(levels_[k].responses, cells))
+  // Levels are independent: detected in parallel, concatenated in the order asked.
+  std::vector<std::vector<biovision_v1::Keypoint>> per_level(levels.size());
+  cv::parallel_for_(cv::Range(0, static_cast<int>(levels.size())), [&](const cv::Range& r) {
+    for (int i = r.start; i < r.end; ++i)
     {
-      const cv::Point2f p = toImage({kp.x, kp.y}, k);
-      kp.x = p.x;
-      kp.y = p.y;
-      kp.wavelength = static_cast<float>(wavelengthOfLevel(k));
-      out.push_back(kp);
+      const int k = levels[i];
+      if (k < 0 || k >= this->levels())
+        continue;
+      const biovision_v1::EndStoppedCells cells(levels_[k].responses);
+      for (biovision_v1::Keypoint kp : detector.detect(levels_[k].responses, cells))
+      {
+        const cv::Point2f p = toImage({kp.x, kp.y}, k);
+        kp.x = p.x;
+        kp.y = p.y;
+        kp.wavelength = static_cast<float>(wavelengthOfLevel(k));
+        per_level[i].push_back(kp);
+      }
     }
-  }
+  });
+  std::vector<biovision_v1::Keypoint> out;
+  for (const auto& level : per_level)
+    out.insert(out.end(), level.begin(), level.end());
   return out;
 }
 }  // namespace biovision_recognition

@@ -18,6 +18,9 @@ namespace biovision_recognition
 /// Order in x: scale, then channel (even 0..N-1, odd 0..N-1), then grid row, grid column.
 struct DescriptorLayout
 {
+  /// Largest pooling grid side validate() accepts (a 32-wavelength patch pooled at step 1).
+  static constexpr int kMaxGridSide = 128;
+
   std::vector<int> scales{0, 1, 2, 3, 4, 5, 6};  ///< j, ascending, >= 0
   int orientations = 8;
   double patch_wavelengths = 8.0;  ///< patch side / keypoint wavelength. > 0

@@ -133,16 +133,6 @@ double rocArea(const std::vector<float>& pos, std::vector<float> neg)
   return pos.empty() || neg.empty() ? 0.0 : sum / (double(pos.size()) * neg.size());
 }
 
-std::vector<std::string> splitList(const std::string& s)
-{
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  std::string item;
-  while (std::getline(ss, item, ','))
-    if (!item.empty())
-      out.push_back(item);
-  return out;
-}
 }  // namespace
 
 int main(int argc, char** argv)
@@ -158,13 +148,13 @@ int main(int argc, char** argv)
   try
   {
     std::vector<std::pair<std::string, std::unique_ptr<V1Descriptor>>> ours;
-    for (const auto& path : splitList(args.get("--models")))
+    for (const auto& path : args.strings("--models"))
     {
       std::string stem = path.substr(path.find_last_of('/') + 1);
       stem = stem.substr(0, stem.find('.'));
       ours.emplace_back(stem, std::make_unique<V1Descriptor>(DescriptorModel::load(path)));
     }
-    const auto peers = splitList(args.get("--peers", "orb,brisk,akaze,sift"));
+    const auto peers = args.strings("--peers", "orb,brisk,akaze,sift");
     PairSampler::Parameters sp;
     sp.levels = args.integers("--levels", sp.levels);
     sp.max_pairs = static_cast<int>(args.number("--pairs", 500));

@@ -52,14 +52,23 @@ public:
   {
     return has(name) ? std::atof(get(name).c_str()) : fallback;
   }
+  /// A comma-separated option, empty items dropped.
+  std::vector<std::string> strings(const std::string& name, const std::string& fallback = "") const
+  {
+    std::vector<std::string> out;
+    std::stringstream ss(get(name, fallback));
+    std::string item;
+    while (std::getline(ss, item, ','))
+      if (!item.empty())
+        out.push_back(item);
+    return out;
+  }
   std::vector<int> integers(const std::string& name, const std::vector<int>& fallback) const
   {
     if (!has(name))
       return fallback;
     std::vector<int> out;
-    std::stringstream ss(get(name));
-    std::string item;
-    while (std::getline(ss, item, ','))
+    for (const auto& item : strings(name))
       out.push_back(std::atoi(item.c_str()));
     return out;
   }

@@ -18,7 +18,7 @@ int DescriptorLayout::featureCount() const
 {
   int n = 0;
   for (int j : scales)
-    n += 2 * orientations * gridSide(j) * gridSide(j);
+    n += phases * orientations * gridSide(j) * gridSide(j);
   return n;
 }
 
@@ -35,6 +35,8 @@ void DescriptorLayout::validate() const
     throw std::invalid_argument("DescriptorLayout: patch_wavelengths must be in (0, 32]");
   if (pooling_diameter < 1 || pooling_diameter > 16 || pooling_step < 1 || pooling_step > 16)
     throw std::invalid_argument("DescriptorLayout: pooling diameter and step must be in [1, 16]");
+  if (phases != 2 && phases != 4)
+    throw std::invalid_argument("DescriptorLayout: phases must be 2 or 4");
   if (gridSide(0) > kMaxGridSide)
     throw std::invalid_argument("DescriptorLayout: more than 128 pooling fields per side");
 }

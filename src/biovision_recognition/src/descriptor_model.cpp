@@ -14,7 +14,7 @@ namespace biovision_recognition
 namespace
 {
 constexpr char kMagic[] = "BVLDAH";
-constexpr uint32_t kVersion = 1;
+constexpr uint32_t kVersion = 2;  // 2: layout.phases
 }  // namespace
 
 void DescriptorModel::validate() const
@@ -49,6 +49,7 @@ void DescriptorModel::save(const std::string& path) const
   w.put<double>(layout.patch_wavelengths);
   w.put<int32_t>(layout.pooling_diameter);
   w.put<int32_t>(layout.pooling_step);
+  w.put<int32_t>(layout.phases);
   w.put<int32_t>(static_cast<int32_t>(projection.rows()));
   w.put<int32_t>(static_cast<int32_t>(projection.cols()));
   std::vector<uint16_t> half(projection.size());
@@ -69,6 +70,7 @@ DescriptorModel DescriptorModel::load(const std::string& path)
     m.layout.patch_wavelengths = r.get<double>();
     m.layout.pooling_diameter = r.get<int32_t>();
     m.layout.pooling_step = r.get<int32_t>();
+    m.layout.phases = r.get<int32_t>();
     const int rows = r.get<int32_t>(), cols = r.get<int32_t>();
     if (rows <= 0 || rows > 512 || cols <= 0 || cols > (1 << 20))
       throw std::runtime_error("projection size " + std::to_string(rows) + " x " + std::to_string(cols));

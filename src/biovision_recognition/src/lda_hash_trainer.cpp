@@ -54,8 +54,16 @@ void leadingEigenpairs(const LdaHashTrainer::Matrix& d, int rank, int exact_limi
 
 DescriptorModel LdaHashTrainer::train(const Matrix& pa, const Matrix& pb, const Matrix& na, const Matrix& nb) const
 {
-  if (pa.rows() != pb.rows() || na.rows() != nb.rows() || pa.cols() != pb.cols() || pa.cols() != na.cols() ||
-      na.cols() != nb.cols())
+  if (pa.rows() != pb.rows() || na.rows() != nb.rows() || pa.cols() != pb.cols() || na.cols() != nb.cols())
+    throw std::invalid_argument("LdaHashTrainer: the pair matrices disagree in size");
+  return trainOnDifferences(pa, pa - pb, na, na - nb);
+}
+
+DescriptorModel LdaHashTrainer::trainOnDifferences(const Matrix& pa, const Matrix& dp, const Matrix& na,
+                                                   const Matrix& dn) const
+{
+  if (pa.rows() != dp.rows() || na.rows() != dn.rows() || pa.cols() != dp.cols() || pa.cols() != na.cols() ||
+      na.cols() != dn.cols())
     throw std::invalid_argument("LdaHashTrainer: the pair matrices disagree in size");
   const int bits = parameters_.bits;
   if (pa.rows() < 2 * bits || na.rows() < 2 * bits)
@@ -64,7 +72,6 @@ DescriptorModel LdaHashTrainer::train(const Matrix& pa, const Matrix& pb, const 
     throw std::invalid_argument("LdaHashTrainer: whitening_rank and the feature count must be >= bits");
 
   // 1. Regularised Sigma_N^-1/2 on the leading eigenpairs.
-  const Matrix dn = na - nb;
   Eigen::VectorXd lambda;
   MatrixD u;
   leadingEigenpairs(dn, parameters_.whitening_rank, parameters_.exact_limit, parameters_.power_iterations,
@@ -74,7 +81,6 @@ DescriptorModel LdaHashTrainer::train(const Matrix& pa, const Matrix& pb, const 
   const MatrixD w = inv_sqrt.asDiagonal() * u.transpose();  // rank x n
 
   // 2. Smallest eigenvectors of the whitened positive covariance.
-  const Matrix dp = pa - pb;
   const MatrixD zp = dp.cast<double>() * w.transpose();  // pairs x rank
   const MatrixD sp = zp.transpose() * zp / static_cast<double>(dp.rows());
   Eigen::SelfAdjointEigenSolver<MatrixD> eig(sp);  // ascending
@@ -84,8 +90,9 @@ DescriptorModel LdaHashTrainer::train(const Matrix& pa, const Matrix& pb, const 
 
   DescriptorModel model;
   model.projection = p.cast<float>();
-  const Matrix ya = pa * model.projection.transpose(), yb = pb * model.projection.transpose();
-  const Matrix za = na * model.projection.transpose(), zb = nb * model.projection.transpose();
+  // b = a - difference, so P b = P a - P difference.
+  const Matrix ya = pa * model.projection.transpose(), yb = ya - dp * model.projection.transpose();
+  const Matrix za = na * model.projection.transpose(), zb = za - dn * model.projection.transpose();
   model.thresholds = thresholds(ya, yb, za, zb);
   return model;
 }

@@ -23,6 +23,15 @@ AxisSample axisSample(float v, int size)
   const int i0 = std::min(static_cast<int>(v), size - 2 < 0 ? 0 : size - 2);
   return {i0, std::min(i0 + 1, size - 1), v - i0};
 }
+
+/// out[c] = bilinear blend of the four neighbours' channel c, for every channel of a pooling field.
+__attribute__((target_clones("arch=skylake-avx512", "arch=haswell", "default"))) void blendChannels(
+    const float* p00, const float* p01, const float* p10, const float* p11, float w00, float w01, float w10,
+    float w11, int channels, float* out)
+{
+  for (int c = 0; c < channels; ++c)
+    out[c] = w00 * p00[c] + w01 * p01[c] + w10 * p10[c] + w11 * p11[c];
+}
 }  // namespace
 
 PooledCellFeatures::PooledCellFeatures(const DescriptorLayout& layout) : layout_(layout)
@@ -34,7 +43,7 @@ void PooledCellFeatures::sampleLevels(const V1FeaturePyramid& pyramid, const cv:
                                       float size_ratio, float* out) const
 {
   const float centre_offset = static_cast<float>(pyramid.poolingCentreOffset());
-  const int channels = 2 * layout_.orientations;
+  const int channels = layout_.phases * layout_.orientations;  // the layout's (the pyramid may hold more)
   for (int j : layout_.scales)
   {
     const int n = layout_.gridSide(j);
@@ -49,26 +58,25 @@ void PooledCellFeatures::sampleLevels(const V1FeaturePyramid& pyramid, const cv:
     const float first = -0.5f * (n - 1) * step;
     // The grid is separable: its sample columns and rows (and their weights) are the same for every
     // channel, so they are worked out once per scale.
-    const cv::Size size = pyramid.pooled(k)[0].size();
+    const cv::Mat& map = pyramid.pooled(k);
+    const cv::Size size = map.size();
+    const int stride = map.channels();
     AxisSample xs[DescriptorLayout::kMaxGridSide], ys[DescriptorLayout::kMaxGridSide];
     for (int g = 0; g < n; ++g)
     {
       xs[g] = axisSample(c.x + first + g * step + centre_offset, size.width);
       ys[g] = axisSample(c.y + first + g * step + centre_offset, size.height);
     }
-    for (int ch = 0; ch < channels; ++ch)
+    for (int gy = 0; gy < n; ++gy)
     {
-      const cv::Mat& map = pyramid.pooled(k)[ch];
-      for (int gy = 0; gy < n; ++gy)
+      const float* r0 = map.ptr<float>(ys[gy].i0);
+      const float* r1 = map.ptr<float>(ys[gy].i1);
+      const float fy = ys[gy].f;
+      for (int gx = 0; gx < n; ++gx, out += channels)
       {
-        const float* r0 = map.ptr<float>(ys[gy].i0);
-        const float* r1 = map.ptr<float>(ys[gy].i1);
-        const float fy = ys[gy].f;
-        for (int gx = 0; gx < n; ++gx)
-        {
-          const AxisSample& x = xs[gx];
-          *out++ = (1 - fy) * ((1 - x.f) * r0[x.i0] + x.f * r0[x.i1]) + fy * ((1 - x.f) * r1[x.i0] + x.f * r1[x.i1]);
-        }
+        const AxisSample& x = xs[gx];
+        blendChannels(r0 + x.i0 * stride, r0 + x.i1 * stride, r1 + x.i0 * stride, r1 + x.i1 * stride,
+                      (1 - fy) * (1 - x.f), (1 - fy) * x.f, fy * (1 - x.f), fy * x.f, channels, out);
       }
     }
   }
@@ -78,7 +86,8 @@ void PooledCellFeatures::extract(const V1FeaturePyramid& pyramid, const biovisio
                                  float* out) const
 {
   if (pyramid.parameters().orientations != layout_.orientations ||
-      pyramid.parameters().pooling_diameter != layout_.pooling_diameter)
+      pyramid.parameters().pooling_diameter != layout_.pooling_diameter ||
+      pyramid.parameters().pooling_phases < layout_.phases)  // ON phases come first: a 4-phase pyramid serves 2
     throw std::invalid_argument("PooledCellFeatures: the pyramid's orientations or pooling differ from the layout's");
   std::fill(out, out + layout_.featureCount(), 0.f);
   // Snapped to the nearest half-octave level; the grid is scaled so the patch keeps its size. (Blending
@@ -89,7 +98,7 @@ void PooledCellFeatures::extract(const V1FeaturePyramid& pyramid, const biovisio
   sampleLevels(pyramid, cv::Point2f(keypoint.x, keypoint.y), base, ratio, out);
   for (int j : layout_.scales)
   {
-    const int count = 2 * layout_.orientations * layout_.gridSide(j) * layout_.gridSide(j);
+    const int count = layout_.phases * layout_.orientations * layout_.gridSide(j) * layout_.gridSide(j);
     double norm = 0.0;
     for (int i = 0; i < count; ++i)
       norm += double(out[i]) * out[i];

@@ -16,6 +16,7 @@ V1FeaturePyramid::Parameters V1Descriptor::pyramidParameters() const
   V1FeaturePyramid::Parameters p;
   p.orientations = model_.layout.orientations;
   p.pooling_diameter = model_.layout.pooling_diameter;
+  p.pooling_phases = model_.layout.phases;
   return p;
 }
 

@@ -16,6 +16,8 @@ V1FeaturePyramid::V1FeaturePyramid(const Parameters& parameters) : parameters_(p
     throw std::invalid_argument("V1FeaturePyramid: max_levels must be >= 1 and min_level_size >= 4");
   if (parameters.pooling_diameter < 1 || parameters.pooling_diameter > 16)
     throw std::invalid_argument("V1FeaturePyramid: pooling_diameter must be in [1, 16]");
+  if (parameters.pooling_phases != 2 && parameters.pooling_phases != 4)
+    throw std::invalid_argument("V1FeaturePyramid: pooling_phases must be 2 or 4");
   const int d = parameters.pooling_diameter;
   pooling_disk_ = cv::Mat::zeros(d, d, CV_8U);
   const double r = d / 2.0;
@@ -100,12 +102,22 @@ void V1FeaturePyramid::build(const cv::Mat& gray)
     level.image = images[k];
     level.scale = {static_cast<float>(gray.cols) / images[k].cols, static_cast<float>(gray.rows) / images[k].rows};
     level.responses = banks_[k].compute(images[k]).front();
-    level.pooled.resize(2 * parameters_.orientations);
-    for (int i = 0; i < parameters_.orientations; ++i)
+    const int n = parameters_.orientations;
+    std::vector<cv::Mat> maps(parameters_.pooling_phases * n);
+    for (int i = 0; i < n; ++i)
     {
-      cv::dilate(level.responses.even[i], level.pooled[i], pooling_disk_);
-      cv::dilate(level.responses.odd[i], level.pooled[parameters_.orientations + i], pooling_disk_);
+      cv::dilate(level.responses.even[i], maps[i], pooling_disk_);
+      cv::dilate(level.responses.odd[i], maps[n + i], pooling_disk_);
+      if (parameters_.pooling_phases == 4)
+      {
+        // OFF phases: the strongest negative response, which the signed maximum discards.
+        cv::erode(level.responses.even[i], maps[2 * n + i], pooling_disk_);
+        cv::erode(level.responses.odd[i], maps[3 * n + i], pooling_disk_);
+        maps[2 * n + i] *= -1.f;
+        maps[3 * n + i] *= -1.f;
+      }
     }
+    cv::merge(maps, level.pooled);
   }
 }
 

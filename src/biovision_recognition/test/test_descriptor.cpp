@@ -71,11 +71,53 @@ TEST(PooledCellFeatures, LayoutSizes)
   EXPECT_EQ(layout.gridSide(0), 15);  // 32 px patch, diameter 4, step 2: the source's 15 x 15 fields
   EXPECT_EQ(layout.gridSide(2), 7);
   EXPECT_EQ(layout.gridSide(6), 1);
-  EXPECT_EQ(layout.featureCount(), 16 * (225 + 100 + 49 + 16 + 9 + 1 + 1));
+  EXPECT_EQ(layout.featureCount(), 32 * (225 + 100 + 49 + 16 + 9 + 1 + 1));  // 4 phases x 8 orientations
   layout.scales = {0};
+  EXPECT_EQ(layout.featureCount(), 7200);
+  layout.phases = 2;
   EXPECT_EQ(layout.featureCount(), 3600);
+  layout.phases = 3;
+  EXPECT_THROW(layout.validate(), std::invalid_argument);
+  layout.phases = 2;
   layout.scales = {2, 1};
   EXPECT_THROW(layout.validate(), std::invalid_argument);
+}
+
+TEST(V1FeaturePyramid, OffPhasesPoolTheNegativeHalfWaves)
+{
+  V1FeaturePyramid pyramid;  // 4 phases
+  pyramid.build(texture(120, 100, 3));
+  const int n = pyramid.parameters().orientations;
+  ASSERT_EQ(pyramid.pooled(1).channels(), 4 * n);
+  for (int i = 0; i < n; ++i)
+  {
+    const cv::Mat& even = pyramid.responses(1).even[i];
+    cv::Mat on, off;
+    cv::extractChannel(pyramid.pooled(1), on, i);
+    cv::extractChannel(pyramid.pooled(1), off, 2 * n + i);
+    // Each pooled map bounds its own half-wave from above, and the OFF map carries what the signed
+    // maximum loses: where a whole pooling field is negative, ON < 0 but OFF > 0.
+    EXPECT_EQ(cv::countNonZero(on < even - 1e-6f), 0);
+    EXPECT_EQ(cv::countNonZero(off < -even - 1e-6f), 0);
+    EXPECT_GT(cv::countNonZero((on < 0.f) & (off > 0.f)), 0);
+  }
+}
+
+TEST(PooledCellFeatures, TwoPhaseLayoutReadsTheOnPhasesOfAFourPhasePyramid)
+{
+  const cv::Mat image = texture(160, 160, 5);
+  V1FeaturePyramid::Parameters two;
+  two.pooling_phases = 2;
+  V1FeaturePyramid with_two(two), with_four;
+  with_two.build(image);
+  with_four.build(image);
+  DescriptorLayout layout;
+  layout.phases = 2;
+  const PooledCellFeatures features(layout);
+  const std::vector<biovision_v1::Keypoint> kps{at(80, 80, 4.f), at(60, 90, 8.f)};
+  EXPECT_EQ(cv::norm(features.extract(with_two, kps), features.extract(with_four, kps), cv::NORM_INF), 0.0);
+  // A 4-phase layout cannot read a 2-phase pyramid.
+  EXPECT_THROW(PooledCellFeatures(DescriptorLayout()).extract(with_two, kps), std::invalid_argument);
 }
 
 TEST(PooledCellFeatures, InvariantToBrightnessOffsetAndContrastGain)
@@ -122,6 +164,10 @@ TEST(LdaHashTrainer, FindsTheKnownProjectionOnSyntheticGaussianClasses)
   p.bits = 2;
   p.whitening_rank = 8;
   const DescriptorModel m = LdaHashTrainer(p).train(pa, pb, na, nb);
+  // train_descriptor's memory-lean path (one side and the differences) gives the same model.
+  const DescriptorModel lean = LdaHashTrainer(p).trainOnDifferences(pa, pa - pb, na, na - nb);
+  EXPECT_LT((lean.projection - m.projection).cwiseAbs().maxCoeff(), 1e-5f * m.projection.cwiseAbs().maxCoeff());
+  EXPECT_LT((lean.thresholds - m.thresholds).cwiseAbs().maxCoeff(), 1e-3f);
   ASSERT_EQ(m.projection.rows(), 2);
   for (int b = 0; b < 2; ++b)
   {

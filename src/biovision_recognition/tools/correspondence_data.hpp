@@ -3,12 +3,16 @@
 // Image pairs with exact correspondence (Middlebury ground-truth disparities, HPatches homographies) for
 // train_descriptor and descriptor_eval, split into disjoint training and test parts.
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "biovision_recognition/pair_sampler.hpp"
 #include "biovision_stereo/middlebury_dataset.hpp"
@@ -89,6 +93,56 @@ inline std::vector<CorrespondencePair> loadCorrespondencePairs(const std::string
       }
   }
   return pairs;
+}
+
+/// Synthetic viewpoint changes of the pairs' real images, ASIFT's camera-tilt model: each image is
+/// compressed by a tilt t in [1, max_tilt] along a random direction, scaled by s in [1/1.25, 1.25] and
+/// turned by up to +-10 degrees (the descriptors are upright), about its centre. Rendered at twice the
+/// size and reduced by area averaging, so compressed texture is low-passed as a camera would, not aliased.
+/// Each distinct image gives `count` new pairs (image, warped image) with their exact homography.
+inline std::vector<CorrespondencePair> syntheticViewpoints(const std::vector<CorrespondencePair>& pairs, int count,
+                                                           double max_tilt, unsigned seed)
+{
+  std::vector<CorrespondencePair> out;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<const uchar*> seen;
+  auto warpAll = [&](const cv::Mat& image, const std::string& name) {
+    if (std::find(seen.begin(), seen.end(), image.data) != seen.end())
+      return;
+    seen.push_back(image.data);
+    for (int k = 0; k < count; ++k)
+    {
+      const double tilt = 1.0 + (max_tilt - 1.0) * unit(rng), phi = CV_PI * unit(rng);
+      const double scale = std::pow(1.25, 2.0 * unit(rng) - 1.0), psi = (20.0 * unit(rng) - 10.0) * CV_PI / 180.0;
+      const cv::Matx22d rot_phi(std::cos(phi), -std::sin(phi), std::sin(phi), std::cos(phi));
+      const cv::Matx22d rot_psi(std::cos(psi), -std::sin(psi), std::sin(psi), std::cos(psi));
+      const cv::Matx22d a = scale * rot_psi * rot_phi.t() * cv::Matx22d(1.0 / tilt, 0.0, 0.0, 1.0) * rot_phi;
+      const cv::Point2d c((image.cols - 1) / 2.0, (image.rows - 1) / 2.0);
+      const cv::Vec2d t = cv::Vec2d(c.x, c.y) - a * cv::Vec2d(c.x, c.y);
+      const cv::Matx33d h(a(0, 0), a(0, 1), t[0], a(1, 0), a(1, 1), t[1], 0, 0, 1);
+      // Twice the resolution: pixel centres x2 = 2 x1 + 0.5.
+      const cv::Matx33d up(2, 0, 0.5, 0, 2, 0.5, 0, 0, 1);
+      const cv::Matx33d h2 = up * h;
+      cv::Mat big, warped;
+      cv::warpAffine(image, big, cv::Mat(cv::Matx23d(h2(0, 0), h2(0, 1), h2(0, 2), h2(1, 0), h2(1, 1), h2(1, 2))),
+                     cv::Size(2 * image.cols, 2 * image.rows), cv::INTER_LINEAR, cv::BORDER_CONSTANT);
+      cv::resize(big, warped, image.size(), 0, 0, cv::INTER_AREA);
+      CorrespondencePair p;
+      p.name = "warp/" + name + "/" + std::to_string(k);
+      p.a = image;
+      p.b = warped;
+      p.homography = cv::Mat(h).clone();
+      out.push_back(p);
+    }
+  };
+  for (const auto& pair : pairs)
+  {
+    warpAll(pair.a, pair.name + "a");
+    if (!pair.homography.empty())
+      warpAll(pair.b, pair.name + "b");
+  }
+  return out;
 }
 
 inline PairSampler::Pairs samplePairs(PairSampler& sampler, const CorrespondencePair& pair, const V1FeaturePyramid& a,

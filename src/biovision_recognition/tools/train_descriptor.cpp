@@ -28,6 +28,9 @@ const char* kUsage =
     "  --levels LIST         pyramid levels keypoints are detected at (default 0,1,2,3,4)\n"
     "  --patch W             patch side in keypoint wavelengths (default 8: 32 px at lambda 4)\n"
     "  --pooling D,S         pooling disk diameter and step in level px (default 4,2)\n"
+    "  --phases N            4 (default): even, odd, -even, -odd maxima; 2: signed even, odd maxima only\n"
+    "  --warps N             add N synthetic camera tilts of every training image (ASIFT model)\n"
+    "  --max-tilt T          largest synthetic tilt (default 2.5);  --warp-pairs N: pairs per warp (default 500)\n"
     "  --pairs N             pairs of each kind per image pair (default 1500)\n"
     "  --rank N              eigenpairs of Sigma_N kept for the whitening (default 512)\n"
     "  --ridge R             whitening ridge, relative to Sigma_N's largest eigenvalue (default 1e-3)\n"
@@ -37,12 +40,22 @@ const char* kUsage =
 
 using Matrix = LdaHashTrainer::Matrix;
 
-void append(Matrix& m, const cv::Mat& rows)
+/// The blocks stacked into one matrix; each block is released once copied, so the peak is one matrix
+/// plus what is left of the blocks (growing a matrix block by block would copy it every time).
+Matrix stack(std::vector<cv::Mat>& blocks, int cols)
 {
-  const Eigen::Index old = m.rows();
-  m.conservativeResize(old + rows.rows, rows.cols);
-  for (int i = 0; i < rows.rows; ++i)
-    m.row(old + i) = Eigen::Map<const Eigen::RowVectorXf>(rows.ptr<float>(i), rows.cols);
+  Eigen::Index rows = 0;
+  for (const auto& b : blocks)
+    rows += b.rows;
+  Matrix m(rows, cols);
+  Eigen::Index at = 0;
+  for (auto& b : blocks)
+  {
+    for (int i = 0; i < b.rows; ++i)
+      m.row(at++) = Eigen::Map<const Eigen::RowVectorXf>(b.ptr<float>(i), cols);
+    b.release();
+  }
+  return m;
 }
 }  // namespace
 
@@ -50,7 +63,7 @@ int main(int argc, char** argv)
 {
   const ToolArguments args(argc, argv, kUsage,
                            {"--out", "--stereo", "--sequence", "--part", "--targets", "--bits", "--scales", "--levels",
-                            "--pairs", "--rank", "--ridge", "--threads", "--patch", "--pooling", "--json"},
+                            "--pairs", "--rank", "--ridge", "--threads", "--patch", "--pooling", "--json", "--phases", "--warps", "--max-tilt", "--warp-pairs"},
                            {"--all-pairs"});
   if (!args.has("--out") || (!args.has("--stereo") && !args.has("--sequence")))
   {
@@ -69,6 +82,7 @@ int main(int argc, char** argv)
       throw std::invalid_argument("--pooling takes D,S");
     layout.pooling_diameter = pooling[0];
     layout.pooling_step = pooling[1];
+    layout.phases = static_cast<int>(args.number("--phases", layout.phases));
     const PooledCellFeatures features(layout);
     PairSampler::Parameters sp;
     sp.levels = args.integers("--levels", sp.levels);
@@ -77,37 +91,53 @@ int main(int argc, char** argv)
     V1FeaturePyramid::Parameters pp;
     pp.orientations = layout.orientations;
     pp.pooling_diameter = layout.pooling_diameter;
+    pp.pooling_phases = layout.phases;
     V1FeaturePyramid pa(pp), pb(pp);
 
     auto pairs = loadCorrespondencePairs(args.get("--stereo"), args.get("--part", "train"), args.get("--sequence"),
                                          args.integers("--targets", {2, 3}), args.has("--all-pairs"));
-
-    Matrix xa, xb, ya, yb;
-    for (const auto& pair : pairs)
+    const size_t real_pairs = pairs.size();
+    if (args.has("--warps"))
     {
+      const auto warps = syntheticViewpoints(pairs, static_cast<int>(args.number("--warps", 0)),
+                                             args.number("--max-tilt", 2.5), 11);
+      pairs.insert(pairs.end(), warps.begin(), warps.end());
+    }
+    PairSampler::Parameters wp = sp;
+    wp.max_pairs = static_cast<int>(args.number("--warp-pairs", 500));
+    PairSampler warp_sampler(wp);
+
+    // One side of each pair and the pair differences: four matrices, not six, for large training sets.
+    std::vector<cv::Mat> xa, dx, ya, dy;
+    for (size_t i = 0; i < pairs.size(); ++i)
+    {
+      const CorrespondencePair& pair = pairs[i];
       pa.build(biovision_v1::InputImage(pair.a).gray());
       pb.build(biovision_v1::InputImage(pair.b).gray());
-      const auto p = samplePairs(sampler, pair, pa, pb);
-      append(xa, features.extract(pa, p.positive_a));
-      append(xb, features.extract(pb, p.positive_b));
-      append(ya, features.extract(pa, p.negative_a));
-      append(yb, features.extract(pb, p.negative_b));
+      const auto p = samplePairs(i < real_pairs ? sampler : warp_sampler, pair, pa, pb);
+      xa.push_back(features.extract(pa, p.positive_a));
+      dx.push_back(xa.back() - features.extract(pb, p.positive_b));
+      ya.push_back(features.extract(pa, p.negative_a));
+      dy.push_back(ya.back() - features.extract(pb, p.negative_b));
       std::cerr << pair.name << ": " << p.positive_a.size() << " pairs of each kind\n";
     }
-    std::cerr << "training on " << xa.rows() << " positive and " << ya.rows() << " negative pairs, "
+    const int n = layout.featureCount();
+    const Matrix positive_a = stack(xa, n), positive_difference = stack(dx, n);
+    const Matrix negative_a = stack(ya, n), negative_difference = stack(dy, n);
+    std::cerr << "training on " << positive_a.rows() << " positive and " << negative_a.rows() << " negative pairs, "
               << layout.featureCount() << " features\n";
     LdaHashTrainer::Parameters tp;
     tp.bits = static_cast<int>(args.number("--bits", 128));
     tp.whitening_rank = static_cast<int>(args.number("--rank", 512));
     tp.ridge = args.number("--ridge", tp.ridge);
     const LdaHashTrainer trainer(tp);
-    DescriptorModel model = trainer.train(xa, xb, ya, yb);
+    DescriptorModel model = trainer.trainOnDifferences(positive_a, positive_difference, negative_a, negative_difference);
     model.layout = layout;
     const std::time_t now = std::time(nullptr);
     char date[32];
     std::strftime(date, sizeof(date), "%Y-%m-%d", std::gmtime(&now));
     model.provenance = "rosrun biovision_recognition train_descriptor " + args.command() + "  (" +
-                       std::to_string(xa.rows()) + " positive / " + std::to_string(ya.rows()) + " negative pairs, " +
+                       std::to_string(positive_a.rows()) + " positive / " + std::to_string(negative_a.rows()) + " negative pairs, " +
                        date + ")";
     model.save(args.get("--out"));
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -116,8 +146,8 @@ int main(int argc, char** argv)
     {
       std::ofstream json(args.get("--json"));
       json << "{\n  \"model\": \"" << model.id() << "\",\n  \"features\": " << layout.featureCount()
-           << ",\n  \"bits\": " << model.bits() << ",\n  \"positive_pairs\": " << xa.rows()
-           << ",\n  \"negative_pairs\": " << ya.rows() << ",\n  \"seconds\": " << seconds << "\n}\n";
+           << ",\n  \"bits\": " << model.bits() << ",\n  \"positive_pairs\": " << positive_a.rows()
+           << ",\n  \"negative_pairs\": " << negative_a.rows() << ",\n  \"seconds\": " << seconds << "\n}\n";
     }
   }
   catch (const std::exception& e)

@@ -14,8 +14,12 @@ namespace biovision_recognition
 /// pixels: the pooling grid coarsens with the scale. Deviation, on purpose: the source pooled every
 /// scale on the 32 x 32 patch grid; a response at wavelength lambda carries nothing finer than lambda / 2,
 /// so that finer grid only adds correlated copies (25,200 inputs for 7 scales, whose Sigma_N^-1/2 is
-/// infeasible) where this grid gives 6,416.
-/// Order in x: scale, then channel (even 0..N-1, odd 0..N-1), then grid row, grid column.
+/// infeasible) where this grid gives 6,416 per two phases.
+/// Channels: simple cells are half-wave rectified in V1, so a cell and its opposite phase are different
+/// cells; pooling the maximum of the signed response keeps only the ON half. With phases = 4 the OFF
+/// halves (maxima of -even, -odd) are pooled too: measured on descriptor_eval's test part (2000 pairs per
+/// image pair), fpr95 0.239 -> 0.196, most of it on the strongest viewpoint change.
+/// Order in x: scale, then grid row, grid column, then channel (even 0..N-1, odd 0..N-1[, -even, -odd]).
 struct DescriptorLayout
 {
   /// Largest pooling grid side validate() accepts (a 32-wavelength patch pooled at step 1).
@@ -26,6 +30,7 @@ struct DescriptorLayout
   double patch_wavelengths = 8.0;  ///< patch side / keypoint wavelength. > 0
   int pooling_diameter = 4;        ///< [level px]
   int pooling_step = 2;            ///< [level px]
+  int phases = 4;                  ///< 2: even, odd (signed maximum); 4: also -even, -odd (OFF half-waves)
 
   /// Pooling fields per side of scale j.
   int gridSide(int j) const;
@@ -36,7 +41,7 @@ struct DescriptorLayout
   bool operator==(const DescriptorLayout& o) const
   {
     return scales == o.scales && orientations == o.orientations && patch_wavelengths == o.patch_wavelengths &&
-           pooling_diameter == o.pooling_diameter && pooling_step == o.pooling_step;
+           pooling_diameter == o.pooling_diameter && pooling_step == o.pooling_step && phases == o.phases;
   }
 };
 }  // namespace biovision_recognition

@@ -41,6 +41,11 @@ public:
   DescriptorModel train(const Matrix& positive_a, const Matrix& positive_b, const Matrix& negative_a,
                         const Matrix& negative_b) const;
 
+  /// The same from one side of each pair and the pair differences (a - b): what train_descriptor keeps,
+  /// so the largest training sets hold four feature matrices in memory instead of six.
+  DescriptorModel trainOnDifferences(const Matrix& positive_a, const Matrix& positive_difference,
+                                     const Matrix& negative_a, const Matrix& negative_difference) const;
+
   /// Step 3 alone: thresholds for given projected pairs (rows = pairs, columns = bits).
   Eigen::VectorXf thresholds(const Matrix& positive_a, const Matrix& positive_b, const Matrix& negative_a,
                              const Matrix& negative_b) const;

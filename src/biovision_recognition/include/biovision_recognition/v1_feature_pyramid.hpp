@@ -33,6 +33,7 @@ public:
     int max_levels = 16;               ///< half-octave levels kept. >= 1
     int min_level_size = 12;           ///< stop when a level's smaller side drops below this [px]
     int pooling_diameter = 4;          ///< disk the pooled maps take the maximum over [level px]. 1..16
+    int pooling_phases = 4;            ///< 2: max of the signed even/odd responses; 4: also max of their negatives
     biovision_v1::KeypointDetector::Parameters keypoints;
   };
 
@@ -53,9 +54,11 @@ public:
   static int levelOfWavelength(double wavelength);
 
   const biovision_v1::ScaleResponses& responses(int k) const { return levels_.at(k).responses; }
-  /// 2 * orientations maps, even 0..N-1 then odd 0..N-1, each the maximum over the pooling disk whose
-  /// centre is poolingCentreOffset() px up-left of the sample.
-  const std::vector<cv::Mat>& pooled(int k) const { return levels_.at(k).pooled; }
+  /// One CV_32FC(pooling_phases * orientations) map: per pixel the channels even 0..N-1, odd 0..N-1
+  /// (then, with 4 phases, -even, -odd), each the maximum over the pooling disk whose centre is
+  /// poolingCentreOffset() px up-left of the sample. Interleaved so that a descriptor reads all channels
+  /// of a pooling field from one place with one set of bilinear weights.
+  const cv::Mat& pooled(int k) const { return levels_.at(k).pooled; }
   double poolingCentreOffset() const;
 
   /// Image -> level k coordinates (pixel centres map to pixel centres) and back.
@@ -74,7 +77,7 @@ private:
     cv::Mat image;
     cv::Point2f scale;  // image px per level px, per axis
     biovision_v1::ScaleResponses responses;
-    std::vector<cv::Mat> pooled;
+    cv::Mat pooled;
   };
   Parameters parameters_;
   std::vector<biovision_v1::SimpleCellBank> banks_;  // one per level: each caches its size's spectra

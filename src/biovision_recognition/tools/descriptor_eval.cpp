@@ -14,9 +14,10 @@
 #include "biovision_recognition/v1_descriptor.hpp"
 #include "correspondence_data.hpp"
 #include "roc_metrics.hpp"
-#include "tool_arguments.hpp"
+#include "biovision_v1/tool_arguments.hpp"
 
 using namespace biovision_recognition;
+using biovision_v1::ToolArguments;
 
 namespace
 {

@@ -20,6 +20,7 @@
 #include "biovision_saliency/middlebury_flow.hpp"
 #include "biovision_saliency/saliency_metrics.hpp"
 #include "biovision_saliency/saliency_pipeline.hpp"
+#include "biovision_v1/tool_arguments.hpp"
 
 using namespace biovision_saliency;
 namespace fs = std::filesystem;
@@ -62,45 +63,13 @@ cv::Mat toFloat(const cv::Mat& m)
 
 int main(int argc, char** argv)
 {
-  std::string stimuli, fixations, json_path, flow_root;
-  int threads = 2, limit = 0;
-  double final_blur = SaliencyParameters().final_blur;
-  for (int i = 1; i < argc; ++i)
-  {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc)
-      {
-        std::cerr << "saliency_eval: " << a << " needs a value\n" << kUsage;
-        std::exit(2);
-      }
-      return argv[++i];
-    };
-    if (a == "--help" || a == "-h")
-    {
-      std::cout << kUsage;
-      return 0;
-    }
-    else if (a == "--stimuli")
-      stimuli = value();
-    else if (a == "--fixations")
-      fixations = value();
-    else if (a == "--json")
-      json_path = value();
-    else if (a == "--flow")
-      flow_root = value();
-    else if (a == "--threads")
-      threads = std::stoi(value());
-    else if (a == "--limit")
-      limit = std::stoi(value());
-    else if (a == "--final-blur")
-      final_blur = std::stod(value());
-    else
-    {
-      std::cerr << "saliency_eval: unknown argument " << a << "\n" << kUsage;
-      return 2;
-    }
-  }
+  const biovision_v1::ToolArguments args(
+      argc, argv, kUsage, {"--stimuli", "--fixations", "--json", "--flow", "--threads", "--limit", "--final-blur"});
+  const std::string stimuli = args.get("--stimuli"), fixations = args.get("--fixations");
+  const std::string json_path = args.get("--json"), flow_root = args.get("--flow");
+  const int threads = static_cast<int>(args.number("--threads", 2));
+  const int limit = static_cast<int>(args.number("--limit", 0));
+  const double final_blur = args.number("--final-blur", SaliencyParameters().final_blur);
   if (stimuli.empty() || fixations.empty() || !fs::is_directory(stimuli) || !fs::is_directory(fixations))
   {
     std::cerr << "saliency_eval: --stimuli and --fixations must be folders\n" << kUsage;

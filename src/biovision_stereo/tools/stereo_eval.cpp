@@ -19,6 +19,7 @@
 #include "biovision_stereo/bio_bin_matcher.hpp"
 #include "biovision_stereo/disparity_metrics.hpp"
 #include "biovision_stereo/middlebury_dataset.hpp"
+#include "biovision_v1/tool_arguments.hpp"
 
 using namespace biovision_stereo;
 
@@ -122,17 +123,6 @@ std::map<std::string, Matcher> makeMatchers(std::map<std::string, std::unique_pt
   return m;
 }
 
-std::vector<std::string> split(const std::string& s)
-{
-  std::vector<std::string> out;
-  std::stringstream in(s);
-  std::string item;
-  while (std::getline(in, item, ','))
-    if (!item.empty())
-      out.push_back(item);
-  return out;
-}
-
 std::string metricsJson(const DisparityMetrics& m, double seconds)
 {
   char buf[256];
@@ -146,44 +136,13 @@ std::string metricsJson(const DisparityMetrics& m, double seconds)
 
 int main(int argc, char** argv)
 {
-  std::string dataset, json_path;
-  std::vector<std::string> methods = {"biobin", "biobin_fast", "bm", "bm_fast", "sgbm", "binary_sgbm"};
-  std::vector<std::string> only_scenes;
-  int threads = 2, repeats = 3;
-  for (int i = 1; i < argc; ++i)
-  {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc)
-      {
-        std::cerr << "stereo_eval: " << a << " needs a value\n" << kUsage;
-        std::exit(2);
-      }
-      return argv[++i];
-    };
-    if (a == "--help" || a == "-h")
-    {
-      std::cout << kUsage;
-      return 0;
-    }
-    else if (a == "--dataset")
-      dataset = value();
-    else if (a == "--json")
-      json_path = value();
-    else if (a == "--methods")
-      methods = split(value());
-    else if (a == "--threads")
-      threads = std::stoi(value());
-    else if (a == "--scenes")
-      only_scenes = split(value());
-    else if (a == "--repeats")
-      repeats = std::max(1, std::stoi(value()));
-    else
-    {
-      std::cerr << "stereo_eval: unknown argument " << a << "\n" << kUsage;
-      return 2;
-    }
-  }
+  const biovision_v1::ToolArguments args(argc, argv, kUsage,
+                                         {"--dataset", "--json", "--methods", "--threads", "--scenes", "--repeats"});
+  const std::string dataset = args.get("--dataset"), json_path = args.get("--json");
+  const std::vector<std::string> methods = args.strings("--methods", "biobin,biobin_fast,bm,bm_fast,sgbm,binary_sgbm");
+  const std::vector<std::string> only_scenes = args.strings("--scenes");
+  const int threads = static_cast<int>(args.number("--threads", 2));
+  const int repeats = std::max(1, static_cast<int>(args.number("--repeats", 3)));
   if (dataset.empty())
   {
     std::cerr << kUsage;

@@ -16,6 +16,7 @@
 #include "biovision_v1/direct_gabor_bank.hpp"
 #include "biovision_v1/input_image.hpp"
 #include "biovision_v1/simple_cell_bank.hpp"
+#include "biovision_v1/tool_arguments.hpp"
 #include "biovision_v1/v1_pipeline.hpp"
 
 using namespace biovision_v1;
@@ -48,44 +49,13 @@ double medianMs(int repeats, const std::function<void()>& f)
 int main(int argc, char** argv)
 {
   const char* shared_env = std::getenv("BIOVISION_SHARED");
-  std::string image_path = std::string(shared_env ? shared_env : "../shared") +
-                           "/data/stereo/middlebury-2001-2006/Art/view1.png";
-  std::string json_path;
-  int threads = 2, repeats = 30, width = 320, height = 240;
-  for (int i = 1; i < argc; ++i)
-  {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc)
-      {
-        std::cerr << "v1_bench: " << a << " needs a value\n" << kUsage;
-        std::exit(2);
-      }
-      return argv[++i];
-    };
-    if (a == "--help" || a == "-h")
-    {
-      std::cout << kUsage;
-      return 0;
-    }
-    else if (a == "--image")
-      image_path = value();
-    else if (a == "--json")
-      json_path = value();
-    else if (a == "--threads")
-      threads = std::stoi(value());
-    else if (a == "--repeats")
-      repeats = std::max(1, std::stoi(value()));
-    else if (a == "--width")
-      width = std::stoi(value());
-    else if (a == "--height")
-      height = std::stoi(value());
-    else
-    {
-      std::cerr << "v1_bench: unknown argument " << a << "\n" << kUsage;
-      return 2;
-    }
-  }
+  const std::string default_image = std::string(shared_env ? shared_env : "../shared") +
+                                    "/data/stereo/middlebury-2001-2006/Art/view1.png";
+  const ToolArguments args(argc, argv, kUsage, {"--image", "--json", "--threads", "--repeats", "--width", "--height"});
+  const std::string image_path = args.get("--image", default_image), json_path = args.get("--json");
+  const int threads = static_cast<int>(args.number("--threads", 2));
+  const int repeats = std::max(1, static_cast<int>(args.number("--repeats", 30)));
+  const int width = static_cast<int>(args.number("--width", 320)), height = static_cast<int>(args.number("--height", 240));
   cv::Mat image = cv::imread(image_path, cv::IMREAD_COLOR);
   if (image.empty())
   {

@@ -1,6 +1,7 @@
 #pragma once
 
-// Command-line parsing shared by the recognition tools: --name value pairs and flags, with a usage text.
+// Command-line parsing shared by every package's evaluation and benchmark tools: --name value pairs and
+// flags, with a usage text. Here because biovision_v1 is the package all algorithm packages build on.
 
 #include <dirent.h>
 
@@ -13,7 +14,7 @@
 #include <string>
 #include <vector>
 
-namespace biovision_recognition
+namespace biovision_v1
 {
 class ToolArguments
 {
@@ -93,4 +94,4 @@ inline std::vector<std::string> listDirectory(const std::string& dir)
   std::sort(names.begin(), names.end());
   return names;
 }
-}  // namespace biovision_recognition
+}  // namespace biovision_v1

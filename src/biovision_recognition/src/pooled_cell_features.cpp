@@ -88,7 +88,7 @@ void PooledCellFeatures::extract(const V1FeaturePyramid& pyramid, const biovisio
   if (pyramid.parameters().orientations != layout_.orientations ||
       pyramid.parameters().pooling_diameter != layout_.pooling_diameter ||
       pyramid.parameters().pooling_phases < layout_.phases)  // ON phases come first: a 4-phase pyramid serves 2
-    throw std::invalid_argument("PooledCellFeatures: the pyramid's orientations or pooling differ from the layout's");
+    throw std::invalid_argument("PooledCellFeatures: the pyramid's orientations, pooling or phases do not fit the layout");
   std::fill(out, out + layout_.featureCount(), 0.f);
   // Snapped to the nearest half-octave level; the grid is scaled so the patch keeps its size. (Blending
   // the two nearest levels was measured: better on the strongest viewpoint change, worse pooled fpr95.)

@@ -37,6 +37,7 @@ void DescriptorLayout::validate() const
     throw std::invalid_argument("DescriptorLayout: pooling diameter and step must be in [1, 16]");
   if (phases != 2 && phases != 4)
     throw std::invalid_argument("DescriptorLayout: phases must be 2 or 4");
+  AffineShapeAdaptation::validate(shape);
   if (gridSide(0) > kMaxGridSide)
     throw std::invalid_argument("DescriptorLayout: more than 128 pooling fields per side");
 }

@@ -14,7 +14,7 @@ namespace biovision_recognition
 namespace
 {
 constexpr char kMagic[] = "BVLDAH";
-constexpr uint32_t kVersion = 2;  // 2: layout.phases
+constexpr uint32_t kVersion = 3;  // 2: layout.phases; 3: layout.shape
 }  // namespace
 
 void DescriptorModel::validate() const
@@ -50,6 +50,10 @@ void DescriptorModel::save(const std::string& path) const
   w.put<int32_t>(layout.pooling_diameter);
   w.put<int32_t>(layout.pooling_step);
   w.put<int32_t>(layout.phases);
+  w.put<int32_t>(layout.shape.iterations);
+  w.put<double>(layout.shape.window_wavelengths);
+  w.put<int32_t>(layout.shape.level_offset);
+  w.put<double>(layout.shape.max_anisotropy);
   w.put<int32_t>(static_cast<int32_t>(projection.rows()));
   w.put<int32_t>(static_cast<int32_t>(projection.cols()));
   std::vector<uint16_t> half(projection.size());
@@ -71,6 +75,10 @@ DescriptorModel DescriptorModel::load(const std::string& path)
     m.layout.pooling_diameter = r.get<int32_t>();
     m.layout.pooling_step = r.get<int32_t>();
     m.layout.phases = r.get<int32_t>();
+    m.layout.shape.iterations = r.get<int32_t>();
+    m.layout.shape.window_wavelengths = r.get<double>();
+    m.layout.shape.level_offset = r.get<int32_t>();
+    m.layout.shape.max_anisotropy = r.get<double>();
     const int rows = r.get<int32_t>(), cols = r.get<int32_t>();
     if (rows <= 0 || rows > 512 || cols <= 0 || cols > (1 << 20))
       throw std::runtime_error("projection size " + std::to_string(rows) + " x " + std::to_string(cols));

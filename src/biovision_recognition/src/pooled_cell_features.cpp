@@ -34,13 +34,14 @@ __attribute__((target_clones("arch=skylake-avx512", "arch=haswell", "default")))
 }
 }  // namespace
 
-PooledCellFeatures::PooledCellFeatures(const DescriptorLayout& layout) : layout_(layout)
+PooledCellFeatures::PooledCellFeatures(const DescriptorLayout& layout)
+  : layout_(layout), shape_adaptation_(layout.shape)
 {
   layout_.validate();
 }
 
 void PooledCellFeatures::sampleLevels(const V1FeaturePyramid& pyramid, const cv::Point2f& position, int base,
-                                      float size_ratio, float* out) const
+                                      float size_ratio, const cv::Matx22f& shape, float* out) const
 {
   const float centre_offset = static_cast<float>(pyramid.poolingCentreOffset());
   const int channels = layout_.phases * layout_.orientations;  // the layout's (the pyramid may hold more)
@@ -61,6 +62,24 @@ void PooledCellFeatures::sampleLevels(const V1FeaturePyramid& pyramid, const cv:
     const cv::Mat& map = pyramid.pooled(k);
     const cv::Size size = map.size();
     const int stride = map.channels();
+    auto blendAt = [&](const AxisSample& x, const AxisSample& y, float* field) {
+      const float* r0 = map.ptr<float>(y.i0);
+      const float* r1 = map.ptr<float>(y.i1);
+      blendChannels(r0 + x.i0 * stride, r0 + x.i1 * stride, r1 + x.i0 * stride, r1 + x.i1 * stride,
+                    (1 - y.f) * (1 - x.f), (1 - y.f) * x.f, y.f * (1 - x.f), y.f * x.f, channels, field);
+    };
+    if (shape != cv::Matx22f::eye())
+    {
+      // An affine grid: every field has its own sample position.
+      for (int gy = 0; gy < n; ++gy)
+        for (int gx = 0; gx < n; ++gx, out += channels)
+        {
+          const float ox = first + gx * step, oy = first + gy * step;
+          blendAt(axisSample(c.x + shape(0, 0) * ox + shape(0, 1) * oy + centre_offset, size.width),
+                  axisSample(c.y + shape(1, 0) * ox + shape(1, 1) * oy + centre_offset, size.height), out);
+        }
+      continue;
+    }
     AxisSample xs[DescriptorLayout::kMaxGridSide], ys[DescriptorLayout::kMaxGridSide];
     for (int g = 0; g < n; ++g)
     {
@@ -68,17 +87,8 @@ void PooledCellFeatures::sampleLevels(const V1FeaturePyramid& pyramid, const cv:
       ys[g] = axisSample(c.y + first + g * step + centre_offset, size.height);
     }
     for (int gy = 0; gy < n; ++gy)
-    {
-      const float* r0 = map.ptr<float>(ys[gy].i0);
-      const float* r1 = map.ptr<float>(ys[gy].i1);
-      const float fy = ys[gy].f;
       for (int gx = 0; gx < n; ++gx, out += channels)
-      {
-        const AxisSample& x = xs[gx];
-        blendChannels(r0 + x.i0 * stride, r0 + x.i1 * stride, r1 + x.i0 * stride, r1 + x.i1 * stride,
-                      (1 - fy) * (1 - x.f), (1 - fy) * x.f, fy * (1 - x.f), fy * x.f, channels, out);
-      }
-    }
+        blendAt(xs[gx], ys[gy], out);
   }
 }
 
@@ -95,7 +105,8 @@ void PooledCellFeatures::extract(const V1FeaturePyramid& pyramid, const biovisio
   const int base = V1FeaturePyramid::levelOfWavelength(keypoint.wavelength);
   const float ratio =
       keypoint.wavelength > 0 ? static_cast<float>(keypoint.wavelength / V1FeaturePyramid::wavelengthOfLevel(base)) : 1.f;
-  sampleLevels(pyramid, cv::Point2f(keypoint.x, keypoint.y), base, ratio, out);
+  const cv::Matx22f shape = shape_adaptation_.estimate(pyramid, keypoint);
+  sampleLevels(pyramid, cv::Point2f(keypoint.x, keypoint.y), base, ratio, shape, out);
   for (int j : layout_.scales)
   {
     const int count = layout_.phases * layout_.orientations * layout_.gridSide(j) * layout_.gridSide(j);

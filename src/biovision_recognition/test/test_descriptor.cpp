@@ -9,34 +9,13 @@
 #include "biovision_recognition/pooled_cell_features.hpp"
 #include "biovision_recognition/projection_kernel.hpp"
 #include "biovision_recognition/v1_descriptor.hpp"
+#include "test_images.hpp"
 
 using namespace biovision_recognition;
+using namespace test_images;
 
 namespace
 {
-/// Smooth random texture in [0.2, 0.8]: plenty of V1 keypoints at every scale.
-cv::Mat texture(int w, int h, unsigned seed)
-{
-  cv::Mat n(h, w, CV_32F);
-  cv::RNG rng(seed);
-  rng.fill(n, cv::RNG::NORMAL, 0.0, 1.0);
-  cv::Mat fine, coarse;
-  cv::GaussianBlur(n, fine, cv::Size(), 1.5);
-  cv::GaussianBlur(n, coarse, cv::Size(), 5.0);
-  cv::Mat t = fine * 2.0 + coarse * 8.0;
-  cv::normalize(t, t, 0.2, 0.8, cv::NORM_MINMAX);
-  return t;
-}
-
-biovision_v1::Keypoint at(float x, float y, float wavelength)
-{
-  biovision_v1::Keypoint k;
-  k.x = x;
-  k.y = y;
-  k.wavelength = wavelength;
-  return k;
-}
-
 std::string modelPath()
 {
   return BIOVISION_RECOGNITION_MODEL;

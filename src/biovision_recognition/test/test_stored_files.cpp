@@ -32,6 +32,8 @@ DescriptorModel smallModel()
 {
   DescriptorModel m;
   m.layout.scales = {4, 5};  // few features: gridSide 3 and 1 -> 16 * (9 + 1)
+  m.layout.shape.window_wavelengths = 1.25;  // not the default: the round trip must carry the shape fields
+  m.layout.shape.max_anisotropy = 3.5;
   std::mt19937 rng(2);
   std::normal_distribution<float> g;
   m.projection.resize(64, m.layout.featureCount());

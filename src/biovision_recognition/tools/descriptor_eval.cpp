@@ -11,6 +11,7 @@
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "biovision_recognition/affine_shape_adaptation.hpp"
 #include "biovision_recognition/v1_descriptor.hpp"
 #include "correspondence_data.hpp"
 #include "roc_metrics.hpp"
@@ -31,6 +32,8 @@ const char* kUsage =
     "  --pairs N          pairs of each kind per image pair (default 2000: 500 left the pooled fpr95 to a few\n"
     "                     hundred pairs of the hardest viewpoint change, and it moved by 0.03 between models)\n"
     "  --peers LIST       OpenCV peers (default orb,brisk,akaze,sift)\n"
+    "  --shaped-peers LIST  peers also run on patches normalised by our affine shape adaptation (method\n"
+    "                     name + \"+shape\"): is the gain the adaptation's or the descriptor's? (default none)\n"
     "  --json FILE        results\n"
     "Every method describes the same keypoints, upright, with the same support (the first model's patch,\n"
     "8 keypoint wavelengths for the committed ones).\n";
@@ -70,8 +73,7 @@ cv::KeyPoint toCv(const biovision_v1::Keypoint& kp, const std::string& method, i
   return k;
 }
 
-Described describePeer(const std::string& method, const cv::Mat& image, const std::vector<biovision_v1::Keypoint>& kps,
-                       float patch_wavelengths, double& seconds)
+cv::Ptr<cv::Feature2D> createPeer(const std::string& method)
 {
   cv::Ptr<cv::Feature2D> f;
   if (method == "orb")
@@ -84,6 +86,13 @@ Described describePeer(const std::string& method, const cv::Mat& image, const st
     f = cv::SIFT::create();
   else
     throw std::runtime_error("unknown peer " + method);
+  return f;
+}
+
+Described describePeer(const std::string& method, const cv::Mat& image, const std::vector<biovision_v1::Keypoint>& kps,
+                       float patch_wavelengths, double& seconds)
+{
+  const cv::Ptr<cv::Feature2D> f = createPeer(method);
   std::vector<cv::KeyPoint> cv_kps;
   for (size_t i = 0; i < kps.size(); ++i)
     cv_kps.push_back(toCv(kps[i], method, static_cast<int>(i), patch_wavelengths));
@@ -108,6 +117,48 @@ Described describePeer(const std::string& method, const cv::Mat& image, const st
   return d;
 }
 
+/// The peer on each keypoint's own patch, resampled so that its affine shape S becomes a circle
+/// (patch(q) = image(c + S q)): the peer then sees what our pooling grid sees. Slow (one image per
+/// keypoint); its time is not comparable.
+Described describeShapedPeer(const std::string& method, const cv::Mat& image, const std::vector<biovision_v1::Keypoint>& kps,
+                             const std::vector<cv::Matx22f>& shapes, float patch_wavelengths, double& seconds)
+{
+  const cv::Ptr<cv::Feature2D> f = createPeer(method);
+  cv::Mat gray;
+  cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
+  Described d;
+  d.row.assign(kps.size(), -1);
+  std::vector<cv::Mat> rows;
+  const auto t0 = std::chrono::steady_clock::now();
+  for (size_t i = 0; i < kps.size(); ++i)
+  {
+    const float support = patch_wavelengths * kps[i].wavelength;
+    // 4 supports: the peers' borders fit, and AKAZE keeps the octave of the keypoint (>= 80 px wide).
+    const int side = 2 * static_cast<int>(std::ceil(2.f * support)) + 1;
+    const float half = (side - 1) / 2.f;
+    const cv::Matx22f& s = shapes[i];
+    const cv::Matx23f to_image(s(0, 0), s(0, 1), kps[i].x - s(0, 0) * half - s(0, 1) * half, s(1, 0), s(1, 1),
+                               kps[i].y - s(1, 0) * half - s(1, 1) * half);
+    cv::Mat patch;
+    cv::warpAffine(gray, patch, cv::Mat(to_image), cv::Size(side, side), cv::INTER_LINEAR | cv::WARP_INVERSE_MAP,
+                   cv::BORDER_REFLECT);
+    biovision_v1::Keypoint centred = kps[i];
+    centred.x = centred.y = half;
+    std::vector<cv::KeyPoint> one{toCv(centred, method, 0, patch_wavelengths)};
+    cv::Mat descriptor;
+    f->compute(patch, one, descriptor);
+    if (one.size() == 1 && descriptor.rows == 1)
+    {
+      d.row[i] = static_cast<int>(rows.size());
+      rows.push_back(descriptor);
+    }
+  }
+  seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (!rows.empty())
+    cv::vconcat(rows, d.descriptors);
+  return d;
+}
+
 float distance(const Described& a, int ia, const Described& b, int ib)
 {
   const cv::Mat ra = a.descriptors.row(a.row[ia]), rb = b.descriptors.row(b.row[ib]);
@@ -119,7 +170,7 @@ float distance(const Described& a, int ia, const Described& b, int ib)
 int main(int argc, char** argv)
 {
   const ToolArguments args(argc, argv, kUsage,
-                           {"--models", "--stereo", "--sequence", "--part", "--targets", "--levels", "--pairs", "--peers",
+                           {"--models", "--stereo", "--sequence", "--part", "--targets", "--levels", "--pairs", "--peers", "--shaped-peers",
                             "--json"});
   if (!args.has("--models") || (!args.has("--stereo") && !args.has("--sequence")))
   {
@@ -136,6 +187,7 @@ int main(int argc, char** argv)
       ours.emplace_back(stem, std::make_unique<V1Descriptor>(DescriptorModel::load(path)));
     }
     const auto peers = args.strings("--peers", "orb,brisk,akaze,sift");
+    const auto shaped_peers = args.strings("--shaped-peers");
     PairSampler::Parameters sp;
     sp.levels = args.integers("--levels", sp.levels);
     sp.max_pairs = static_cast<int>(args.number("--pairs", 2000));
@@ -183,6 +235,20 @@ int main(int argc, char** argv)
       for (const auto& m : peers)
         described[m] = {describePeer(m, pair.a, p.positive_a, support, seconds[m]),
                         describePeer(m, pair.b, kb, support, seconds[m])};
+      if (!shaped_peers.empty())
+      {
+        const AffineShapeAdaptation adaptation(ours.front().second->model().layout.shape);
+        auto shapesOf = [&](const V1FeaturePyramid& pyr, const std::vector<biovision_v1::Keypoint>& kps) {
+          std::vector<cv::Matx22f> shapes;
+          for (const auto& k : kps)
+            shapes.push_back(adaptation.estimate(pyr, k));
+          return shapes;
+        };
+        const auto shapes_a = shapesOf(pa, p.positive_a), shapes_b = shapesOf(pb, kb);
+        for (const auto& m : shaped_peers)
+          described[m + "+shape"] = {describeShapedPeer(m, pair.a, p.positive_a, shapes_a, support, seconds[m + "+shape"]),
+                                     describeShapedPeer(m, pair.b, kb, shapes_b, support, seconds[m + "+shape"])};
+      }
       // Only pairs every method described.
       std::vector<size_t> kept;
       for (size_t i = 0; i < n; ++i)

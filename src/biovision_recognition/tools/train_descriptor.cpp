@@ -30,6 +30,8 @@ const char* kUsage =
     "  --patch W             patch side in keypoint wavelengths (default 8: 32 px at lambda 4)\n"
     "  --pooling D,S         pooling disk diameter and step in level px (default 4,2)\n"
     "  --phases N            4 (default): even, odd, -even, -odd maxima; 2: signed even, odd maxima only\n"
+    "  --shape I,W,L,A       affine shape adaptation of the pooling grid: iterations (0: square grid), window\n"
+    "                        sigma [wavelengths], gradient level offset, largest anisotropy (default 4,1.5,1,4)\n"
     "  --warps N             add N synthetic camera tilts of every training image (ASIFT model)\n"
     "  --max-tilt T          largest synthetic tilt (default 2.5);  --warp-pairs N: pairs per warp (default 500)\n"
     "  --pairs N             pairs of each kind per image pair (default 1500)\n"
@@ -63,7 +65,7 @@ Matrix stack(std::vector<cv::Mat>& blocks, int cols)
 int main(int argc, char** argv)
 {
   const ToolArguments args(argc, argv, kUsage,
-                           {"--out", "--stereo", "--sequence", "--part", "--targets", "--bits", "--scales", "--levels",
+                           {"--out", "--shape", "--stereo", "--sequence", "--part", "--targets", "--bits", "--scales", "--levels",
                             "--pairs", "--rank", "--ridge", "--threads", "--patch", "--pooling", "--json", "--phases", "--warps", "--max-tilt", "--warp-pairs"},
                            {"--all-pairs"});
   if (!args.has("--out") || (!args.has("--stereo") && !args.has("--sequence")))
@@ -84,6 +86,16 @@ int main(int argc, char** argv)
     layout.pooling_diameter = pooling[0];
     layout.pooling_step = pooling[1];
     layout.phases = static_cast<int>(args.number("--phases", layout.phases));
+    if (args.has("--shape"))
+    {
+      const auto shape = args.strings("--shape");
+      if (shape.size() != 4)
+        throw std::invalid_argument("--shape takes I,W,L,A");
+      layout.shape.iterations = std::stoi(shape[0]);
+      layout.shape.window_wavelengths = std::stod(shape[1]);
+      layout.shape.level_offset = std::stoi(shape[2]);
+      layout.shape.max_anisotropy = std::stod(shape[3]);
+    }
     const PooledCellFeatures features(layout);
     PairSampler::Parameters sp;
     sp.levels = args.integers("--levels", sp.levels);

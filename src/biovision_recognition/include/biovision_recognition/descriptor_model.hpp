@@ -24,7 +24,7 @@ struct DescriptorModel
   /// Throws std::invalid_argument when sizes disagree or a value is not finite.
   void validate() const;
 
-  /// Stored as a StoredFile ("BVLDAH", version 1) with P in IEEE half precision: the 128-bit model is
+  /// Stored as a StoredFile ("BVLDAH", version 3: 2 added the phases, 3 the shape adaptation) with P in IEEE half precision: the 128-bit model is
   /// 1.6 MB instead of 3.3, and half precision moves (P x)_i by ~1e-3 of its spread (tested).
   void save(const std::string& path) const;
   /// Throws StoredFileError for a missing, foreign, corrupt, truncated or wrong-version file.

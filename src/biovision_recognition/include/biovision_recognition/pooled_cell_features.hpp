@@ -12,7 +12,8 @@ namespace biovision_recognition
 {
 /// The descriptor's input: around a keypoint, the max-pooled even and odd simple cells of every scale
 /// of the layout, each scale normalised to a unit vector (thesis 3.3.2), so a brightness offset (the
-/// cells are DC-free) and a contrast gain leave it unchanged.
+/// cells are DC-free) and a contrast gain leave it unchanged. The pooling grid is laid on the keypoint's
+/// affine shape when the layout asks for it (DescriptorLayout::shape).
 class PooledCellFeatures
 {
 public:
@@ -27,10 +28,12 @@ public:
   const DescriptorLayout& layout() const { return layout_; }
 
 private:
-  /// The pooled samples of pyramid levels base + j (grid scaled by size_ratio) into out.
+  /// The pooled samples of pyramid levels base + j (grid scaled by size_ratio, offsets mapped by shape)
+  /// into out.
   void sampleLevels(const V1FeaturePyramid& pyramid, const cv::Point2f& position, int base, float size_ratio,
-                    float* out) const;
+                    const cv::Matx22f& shape, float* out) const;
 
   DescriptorLayout layout_;
+  AffineShapeAdaptation shape_adaptation_;
 };
 }  // namespace biovision_recognition

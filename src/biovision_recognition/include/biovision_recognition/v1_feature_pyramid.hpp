@@ -53,6 +53,8 @@ public:
   /// The level whose cells are nearest to wavelength lambda (>= 0; may be >= levels()).
   static int levelOfWavelength(double wavelength);
 
+  /// The gray image of level k (CV_32FC1, the input shrunk by 2^(k/2)).
+  const cv::Mat& image(int k) const { return levels_.at(k).image; }
   const biovision_v1::ScaleResponses& responses(int k) const { return levels_.at(k).responses; }
   /// One CV_32FC(pooling_phases * orientations) map: per pixel the channels even 0..N-1, odd 0..N-1
   /// (then, with 4 phases, -even, -odd), each the maximum over the pooling disk whose centre is

@@ -21,7 +21,7 @@ float bilinear(const cv::Mat& image, float x, float y)
   return (1 - fy) * ((1 - fx) * r0[x0] + fx * r0[x1]) + fy * ((1 - fx) * r1[x0] + fx * r1[x1]);
 }
 
-/// Symmetric square root and inverse square root of a symmetric positive-definite 2x2 matrix, scaled to det 1.
+/// Symmetric square root of a symmetric positive-semidefinite 2x2 matrix, scaled to det 1.
 cv::Matx22d unitSqrt(const cv::Matx22d& m)
 {
   const double det = std::sqrt(std::max(m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0), 0.0));

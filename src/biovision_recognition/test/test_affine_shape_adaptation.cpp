@@ -63,27 +63,38 @@ cv::Matx22d strongForeshortening()
   const cv::Matx22d r(c, -s, s, c);
   return r * cv::Matx22d(0.4, 0, 0, 1.0) * r.t();
 }
+/// A frontal texture and its 2.5:1 foreshortened view, their pyramids, and keypoints that correspond.
+struct ForeshortenedPair
+{
+  cv::Matx22d j = strongForeshortening();
+  V1FeaturePyramid frontal, view;
+  std::vector<biovision_v1::Keypoint> frontal_keypoints, view_keypoints;
+
+  ForeshortenedPair(unsigned seed, int half, double spacing)
+  {
+    const cv::Mat a = test_images::texture(420, 420, seed, 2.0);
+    cv::Point2d c;
+    const cv::Mat b = foreshortened(a, j, c);
+    frontal.build(a);
+    view.build(b);
+    correspondingKeypoints(c, j, half, spacing, frontal_keypoints, view_keypoints);
+  }
+};
 }  // namespace
 
 TEST(AffineShapeAdaptation, FollowsAForeshorteningOfTheSurface)
 {
-  const cv::Mat a = test_images::texture(420, 420, 7, 2.0);
-  cv::Point2d c;
-  const cv::Matx22d j = strongForeshortening();
-  const cv::Mat b = foreshortened(a, j, c);
-  V1FeaturePyramid pa, pb;
-  pa.build(a);
-  pb.build(b);
+  const ForeshortenedPair pair(7, 1, 40.0);
+  const auto& ka = pair.frontal_keypoints;
+  const auto& kb = pair.view_keypoints;
   const AffineShapeAdaptation adaptation{AffineShapeAdaptation::Parameters()};
-  std::vector<biovision_v1::Keypoint> ka, kb;
-  correspondingKeypoints(c, j, 1, 40.0, ka, kb);
   int near = 0;
   double mean_anisotropy_b = 0.0;
   for (size_t i = 0; i < ka.size(); ++i)
   {
-    const cv::Matx22f sa = adaptation.estimate(pa, ka[i]), sb = adaptation.estimate(pb, kb[i]);
+    const cv::Matx22f sa = adaptation.estimate(pair.frontal, ka[i]), sb = adaptation.estimate(pair.view, kb[i]);
     // Frobenius distance between det-1 shapes; the unadapted guess (identity) is ~1.1 away.
-    near += cv::norm(cv::Matx22d(sb) - expectedShape(j, cv::Matx22d(sa))) < 0.35;
+    near += cv::norm(cv::Matx22d(sb) - expectedShape(pair.j, cv::Matx22d(sa))) < 0.35;
     mean_anisotropy_b += anisotropy(sb) / ka.size();
   }
   EXPECT_GE(near, 7) << "of " << ka.size();
@@ -142,21 +153,13 @@ TEST(PooledCellFeatures, ShapeAdaptationBringsAForeshortenedViewCloser)
   // on the adapted shape must make them more alike (cosine of the unit-per-scale feature vectors). The
   // gain is modest in x itself (the cells' orientations are still foreshortened; only the grid follows),
   // the projection learned to weigh what survives.
-  const cv::Mat a = test_images::texture(420, 420, 11, 2.0);
-  cv::Point2d c;
-  const cv::Matx22d j = strongForeshortening();
-  const cv::Mat b = foreshortened(a, j, c);
-  V1FeaturePyramid pa, pb;
-  pa.build(a);
-  pb.build(b);
+  const ForeshortenedPair pair(11, 2, 30.0);
   DescriptorLayout adapted, square;
   adapted.scales = square.scales = {0, 1, 2, 3};
   square.shape.iterations = 0;
-  std::vector<biovision_v1::Keypoint> ka, kb;
-  correspondingKeypoints(c, j, 2, 30.0, ka, kb);
   auto similarity = [&](const DescriptorLayout& layout) {
     const PooledCellFeatures f(layout);
-    const cv::Mat xa = f.extract(pa, ka), xb = f.extract(pb, kb);
+    const cv::Mat xa = f.extract(pair.frontal, pair.frontal_keypoints), xb = f.extract(pair.view, pair.view_keypoints);
     double sum = 0.0;
     for (int i = 0; i < xa.rows; ++i)
       sum += xa.row(i).dot(xb.row(i)) / (cv::norm(xa.row(i)) * cv::norm(xb.row(i)));

@@ -292,7 +292,11 @@ int main(int argc, char** argv)
       json << "  \"" << m << "\": {\"fpr95\": " << f << ", \"fpr95_at_threshold\": " << f_at_t << ", \"roc_auc\": " << auc << ", \"us_per_keypoint\": " << us
            << ", \"pairs\": " << s.positive.size() << ", \"binary\": " << (s.binary ? "true" : "false") << "},\n";
     }
-    json << "  \"notes\": \"fpr95 = false-positive rate at exactly 95% recall (ties at the threshold distance shared in proportion, i.e. the ROC curve interpolated); fpr95_at_threshold = at the first distance whose recall reaches 95%, whole tie charged; lower is better. Test part only (odd scenes, sequence 1-4..1-6), disjoint from training. Goal: the lowest fpr95 of the binary descriptors (sift is float, for reference).\",\n";
+    std::string notes =
+        "fpr95 = false-positive rate at exactly 95% recall (ties at the threshold distance shared in proportion, i.e. the ROC curve interpolated); fpr95_at_threshold = at the first distance whose recall reaches 95%, whole tie charged; lower is better. Test part only (odd scenes, sequence 1-4..1-6), disjoint from training. Goal: the lowest fpr95 of the binary descriptors (sift is float, for reference).";
+    if (!shaped_peers.empty())
+      notes += " +shape rows: the peer run on each keypoint's patch resampled by our affine shape adaptation (a hybrid made to ask whether a gain is the adaptation's or the descriptor's, not the peer as OpenCV ships it; its time includes one warp and one image per keypoint).";
+    json << "  \"notes\": \"" << notes << "\",\n";
     json << "  \"scenes\": {";
     bool first = true;
     for (const auto& [name, fprs] : per_pair_fpr)

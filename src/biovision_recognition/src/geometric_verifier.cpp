@@ -26,13 +26,14 @@ GeometricVerifier::Result GeometricVerifier::verify(const std::vector<cv::Point2
   t.convertTo(t64, CV_64F);
   result.transform = cv::Matx23d(t64.ptr<double>());
   const double scale = std::hypot(result.transform(0, 0), result.transform(1, 0));
+  const double rotation = std::abs(std::atan2(result.transform(1, 0), result.transform(0, 0))) * 180.0 / CV_PI;
   for (size_t i = 0; i < from.size(); ++i)
   {
     result.inlier_mask[i] = inliers.at<uint8_t>(static_cast<int>(i)) ? 1 : 0;
     result.inliers += result.inlier_mask[i];
   }
   result.accepted = result.inliers >= parameters_.min_inliers && scale >= parameters_.min_scale &&
-                    scale <= parameters_.max_scale;
+                    scale <= parameters_.max_scale && rotation <= parameters_.max_rotation_degrees;
   return result;
 }
 }  // namespace biovision_recognition

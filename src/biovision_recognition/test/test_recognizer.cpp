@@ -87,6 +87,35 @@ TEST(GeometricVerifier, AcceptsASimilarityWithOutliersRejectsAScrambledSet)
   EXPECT_THROW(verifier.verify(from, {}), std::invalid_argument);
 }
 
+TEST(GeometricVerifier, RefusesAConsensusTurnedFurtherThanUprightCodesAllow)
+{
+  // A perfect consensus turned by 90 degrees: upright codes cannot match that, so it is a chance
+  // alignment of look-alike texture, not the object. The same set turned by 20 degrees is accepted.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(0.f, 100.f);
+  auto turned = [&](double degrees, std::vector<cv::Point2f>& from, std::vector<cv::Point2f>& to) {
+    const double a = degrees * CV_PI / 180.0;
+    for (int i = 0; i < 12; ++i)
+    {
+      const cv::Point2f p(u(rng), u(rng));
+      from.push_back(p);
+      to.emplace_back(static_cast<float>(std::cos(a) * p.x - std::sin(a) * p.y + 50),
+                      static_cast<float>(std::sin(a) * p.x + std::cos(a) * p.y + 10));
+    }
+  };
+  std::vector<cv::Point2f> f90, t90, f20, t20;
+  turned(90.0, f90, t90);
+  turned(-20.0, f20, t20);
+  const GeometricVerifier verifier;
+  const auto r90 = verifier.verify(f90, t90);
+  EXPECT_EQ(r90.inliers, 12);  // the consensus is found ...
+  EXPECT_FALSE(r90.accepted);  // ... and refused
+  EXPECT_TRUE(verifier.verify(f20, t20).accepted);
+  GeometricVerifier::Parameters any_rotation;
+  any_rotation.max_rotation_degrees = 180.0;
+  EXPECT_TRUE(GeometricVerifier(any_rotation).verify(f90, t90).accepted);
+}
+
 TEST(ObjectRecognizer, FindsALearnedObjectInAScenePutsTheBoxOnItAndStaysSilentWithoutIt)
 {
   ObjectRecognizer recognizer(trainedDescriptor(), ObjectRecognizer::Parameters());

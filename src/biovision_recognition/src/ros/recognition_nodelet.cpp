@@ -103,6 +103,7 @@ void RecognitionNodelet::reconfigure(RecognitionConfig& c, uint32_t /*level*/)
   p.max_distance = c.max_distance;
   p.verifier.min_inliers = c.min_matches;
   p.verifier.inlier_distance = c.inlier_distance;
+  p.verifier.max_rotation_degrees = c.max_rotation;
   p.max_keypoints = c.max_keypoints;
   p.time_budget_ms = c.time_budget_ms;
   p.region_margin = c.region_margin;

@@ -1,6 +1,7 @@
 #include "biovision_recognition/affine_shape_adaptation.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -77,6 +78,14 @@ cv::Matx22f AffineShapeAdaptation::estimate(const V1FeaturePyramid& pyramid, con
   const double sigma = parameters_.window_wavelengths * keypoint.wavelength * level_px;
   constexpr int kHalf = 6;  // 13 x 13 samples over +-2 sigma
   const double spacing = 2.0 * sigma / kHalf;
+  // The window's weights depend only on the sample's grid index (spacing is a fixed fraction of sigma).
+  static const std::array<double, (2 * kHalf + 1) * (2 * kHalf + 1)> kWeights = [] {
+    std::array<double, (2 * kHalf + 1) * (2 * kHalf + 1)> w{};
+    for (int v = -kHalf; v <= kHalf; ++v)
+      for (int u = -kHalf; u <= kHalf; ++u)
+        w[(v + kHalf) * (2 * kHalf + 1) + u + kHalf] = std::exp(-2.0 * (u * u + v * v) / double(kHalf * kHalf));
+    return w;
+  }();
   for (int it = 0; it < parameters_.iterations; ++it)
   {
     // Gradients along the normalised frame's axes (derivatives warped with the window), one level px apart.
@@ -86,7 +95,7 @@ cv::Matx22f AffineShapeAdaptation::estimate(const V1FeaturePyramid& pyramid, con
       for (int u = -kHalf; u <= kHalf; ++u)
       {
         const double qx = u * spacing, qy = v * spacing;
-        const double w = std::exp(-(qx * qx + qy * qy) / (2 * sigma * sigma));
+        const double w = kWeights[(v + kHalf) * (2 * kHalf + 1) + u + kHalf];
         const float px = static_cast<float>(c.x + s(0, 0) * qx + s(0, 1) * qy);
         const float py = static_cast<float>(c.y + s(1, 0) * qx + s(1, 1) * qy);
         const double gx = 0.5 * (bilinear(image, px + ax[0], py + ax[1]) - bilinear(image, px - ax[0], py - ax[1]));

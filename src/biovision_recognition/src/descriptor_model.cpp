@@ -5,9 +5,13 @@
 #include <stdexcept>
 #include <vector>
 
-#include "biovision_recognition/payload_reader.hpp"
-#include "biovision_recognition/payload_writer.hpp"
-#include "biovision_recognition/stored_file.hpp"
+#include "biovision_common/payload_reader.hpp"
+#include "biovision_common/payload_writer.hpp"
+#include "biovision_common/stored_file.hpp"
+
+using biovision_common::StoredFile;
+using biovision_common::PayloadReader;
+using biovision_common::PayloadWriter;
 
 namespace biovision_recognition
 {

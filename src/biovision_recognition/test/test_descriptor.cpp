@@ -4,12 +4,15 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "biovision_recognition/hamming_kernel.hpp"
+#include "biovision_common/hamming_distance.hpp"
 #include "biovision_recognition/lda_hash_trainer.hpp"
 #include "biovision_recognition/pooled_cell_features.hpp"
 #include "biovision_recognition/projection_kernel.hpp"
 #include "biovision_recognition/v1_descriptor.hpp"
 #include "test_images.hpp"
+#include "biovision_common/hamming_distance.hpp"
+
+using biovision_common::hammingDistanceReference;
 
 using namespace biovision_recognition;
 using namespace test_images;

@@ -38,39 +38,8 @@ BinaryCodeSet nearCopies(const BinaryCodeSet& base, size_t n, int max_flips, std
 }
 }  // namespace
 
-TEST(HammingKernel, ReferenceCountsBits)
+TEST(BinaryCodeSet, RefusesLengthsThatAreNotWholeWords)
 {
-  const uint64_t a[2] = {0, 0}, b[2] = {0xFFFFFFFFFFFFFFFFULL, 0x5ULL};
-  EXPECT_EQ(hammingDistanceReference(a, b, 2), 66);
-  EXPECT_EQ(hammingDistanceReference(b, b, 2), 0);
-}
-
-TEST(HammingKernel, EveryAvailablePathEqualsTheScalarReference)
-{
-  std::mt19937_64 rng(3);
-  const auto paths = availableHammingPaths();
-  ASSERT_EQ(paths.front(), HammingPath::Scalar);
-  for (int bits : {64, 128, 256, 512})
-    for (size_t count : {size_t(1), size_t(7), size_t(8), size_t(33), size_t(1001)})
-    {
-      const BinaryCodeSet q = randomCodes(bits, 1, rng), lib = randomCodes(bits, count, rng);
-      std::vector<uint16_t> expected(count), got(count);
-      for (size_t i = 0; i < count; ++i)
-        expected[i] = static_cast<uint16_t>(hammingDistanceReference(q.code(0), lib.code(i), q.words()));
-      for (HammingPath p : paths)
-      {
-        std::fill(got.begin(), got.end(), 0xFFFF);
-        hammingDistances(p, q.code(0), lib.data(), count, q.words(), got.data());
-        EXPECT_EQ(got, expected) << toString(p) << " bits " << bits << " count " << count;
-      }
-    }
-}
-
-TEST(HammingKernel, RefusesUnsupportedLengths)
-{
-  const uint64_t a[3] = {1, 2, 3};
-  uint16_t out[1];
-  EXPECT_THROW(hammingDistances(HammingPath::Scalar, a, a, 1, 3, out), std::invalid_argument);
   EXPECT_THROW(BinaryCodeSet(100), std::invalid_argument);
 }
 

@@ -4,9 +4,12 @@
 #include <fstream>
 #include <random>
 
+#include "biovision_common/stored_file.hpp"
+
 #include "biovision_recognition/descriptor_model.hpp"
 #include "biovision_recognition/object_memory.hpp"
-#include "biovision_recognition/stored_file.hpp"
+
+using biovision_common::StoredFileError;
 
 using namespace biovision_recognition;
 
@@ -60,43 +63,6 @@ ObjectView view(const std::string& label, int n, uint64_t seed)
   return v;
 }
 }  // namespace
-
-TEST(StoredFile, Crc32MatchesTheStandardCheckValue)
-{
-  const std::string s = "123456789";
-  EXPECT_EQ(StoredFile::crc32(reinterpret_cast<const uint8_t*>(s.data()), s.size()), 0xCBF43926u);
-}
-
-TEST(StoredFile, RoundTripAndEveryKindOfDamageIsRefused)
-{
-  const std::string path = tempPath("stored.bin");
-  const std::vector<uint8_t> payload{1, 2, 3, 4, 5, 6, 7};
-  StoredFile::write(path, "TEST", 3, payload);
-  EXPECT_EQ(StoredFile::read(path, "TEST", 3), payload);
-  EXPECT_THROW(StoredFile::read(path, "OTHER", 3), StoredFileError);  // foreign
-  EXPECT_THROW(StoredFile::read(path, "TEST", 4), StoredFileError);   // version
-  EXPECT_THROW(StoredFile::read(path + ".missing", "TEST", 3), StoredFileError);
-  auto bytes = fileBytes(path);
-  auto flipped = bytes;
-  flipped[26] ^= 0x10;  // inside the payload
-  writeBytes(path, flipped);
-  EXPECT_THROW(StoredFile::read(path, "TEST", 3), StoredFileError);
-  writeBytes(path, std::vector<uint8_t>(bytes.begin(), bytes.end() - 3));  // truncated
-  EXPECT_THROW(StoredFile::read(path, "TEST", 3), StoredFileError);
-  writeBytes(path, {});
-  EXPECT_THROW(StoredFile::read(path, "TEST", 3), StoredFileError);
-  std::remove(path.c_str());
-}
-
-TEST(StoredFile, WriteLeavesNoTemporaryBehind)
-{
-  const std::string path = tempPath("atomic.bin");
-  StoredFile::write(path, "TEST", 1, {9});
-  StoredFile::write(path, "TEST", 1, {8});
-  EXPECT_EQ(StoredFile::read(path, "TEST", 1), std::vector<uint8_t>{8});
-  EXPECT_FALSE(std::ifstream(path + ".tmp." + std::to_string(::getpid())).good());
-  std::remove(path.c_str());
-}
 
 TEST(DescriptorModel, RoundTripKeepsHalfPrecisionAndIdentity)
 {

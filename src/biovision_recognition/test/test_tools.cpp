@@ -5,7 +5,11 @@
 #include <opencv2/imgproc.hpp>
 
 #include "correspondence_data.hpp"
-#include "roc_metrics.hpp"
+#include "biovision_common/eval/roc_metrics.hpp"
+
+using biovision_common::fpr95AtThreshold;
+using biovision_common::fpr95;
+using biovision_common::rocArea;
 
 using namespace biovision_recognition;
 

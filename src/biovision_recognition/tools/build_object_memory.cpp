@@ -12,11 +12,11 @@
 
 #include "biovision_recognition/object_recognizer.hpp"
 #include "biovision_v1/input_image.hpp"
-#include "biovision_v1/tool_arguments.hpp"
+#include "biovision_common/tool_arguments.hpp"
 
 using namespace biovision_recognition;
-using biovision_v1::listDirectory;
-using biovision_v1::ToolArguments;
+using biovision_common::listDirectory;
+using biovision_common::ToolArguments;
 
 namespace
 {

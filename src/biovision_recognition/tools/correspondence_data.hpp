@@ -15,8 +15,10 @@
 #include <opencv2/imgproc.hpp>
 
 #include "biovision_recognition/pair_sampler.hpp"
-#include "biovision_stereo/middlebury_dataset.hpp"
+#include "biovision_common/eval/middlebury_dataset.hpp"
 #include "biovision_v1/input_image.hpp"
+
+using biovision_common::MiddleburyDataset;
 
 namespace biovision_recognition
 {
@@ -54,7 +56,7 @@ inline std::vector<CorrespondencePair> loadCorrespondencePairs(const std::string
   std::vector<CorrespondencePair> pairs;
   if (!stereo_dir.empty())
   {
-    const auto scenes = biovision_stereo::MiddleburyDataset::load(stereo_dir);
+    const auto scenes = biovision_common::MiddleburyDataset::load(stereo_dir);
     for (size_t i = 0; i < scenes.size(); ++i)
       if (inPart(i, part))
         pairs.push_back({"stereo/" + scenes[i].name, scenes[i].left, scenes[i].right, cv::Mat(),

@@ -14,11 +14,15 @@
 #include "biovision_recognition/affine_shape_adaptation.hpp"
 #include "biovision_recognition/v1_descriptor.hpp"
 #include "correspondence_data.hpp"
-#include "roc_metrics.hpp"
-#include "biovision_v1/tool_arguments.hpp"
+#include "biovision_common/eval/roc_metrics.hpp"
+#include "biovision_common/tool_arguments.hpp"
+
+using biovision_common::fpr95AtThreshold;
+using biovision_common::fpr95;
+using biovision_common::rocArea;
 
 using namespace biovision_recognition;
-using biovision_v1::ToolArguments;
+using biovision_common::ToolArguments;
 
 namespace
 {

@@ -12,10 +12,10 @@
 
 #include "biovision_recognition/hamming_matcher.hpp"
 #include "biovision_recognition/multi_index_hash.hpp"
-#include "biovision_v1/tool_arguments.hpp"
+#include "biovision_common/tool_arguments.hpp"
 
 using namespace biovision_recognition;
-using biovision_v1::ToolArguments;
+using biovision_common::ToolArguments;
 
 namespace
 {

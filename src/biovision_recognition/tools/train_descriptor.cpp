@@ -10,10 +10,10 @@
 #include "biovision_recognition/lda_hash_trainer.hpp"
 #include "biovision_recognition/pooled_cell_features.hpp"
 #include "correspondence_data.hpp"
-#include "biovision_v1/tool_arguments.hpp"
+#include "biovision_common/tool_arguments.hpp"
 
 using namespace biovision_recognition;
-using biovision_v1::ToolArguments;
+using biovision_common::ToolArguments;
 
 namespace
 {

@@ -106,10 +106,13 @@ TEST_F(SaliencyNodeTest, RegionsAtTheInputRateNearObjectFirst)
   ASSERT_TRUE(ros::service::waitForService("saliency/reset_inhibition", ros::Duration(5)));
   EXPECT_TRUE(ros::service::call("saliency/reset_inhibition", srv));
   EXPECT_TRUE(srv.response.success);
-  // Bad input: a 16-bit image -> ERROR diagnostic; the node keeps producing regions afterwards.
+  // Bad input: a frame whose data is shorter than step x height -> ERROR diagnostic; the node keeps
+  // producing regions afterwards.
   std_msgs::Header h;
   h.stamp = ros::Time::now();
-  image_pub_.publish(cv_bridge::CvImage(h, "mono16", cv::Mat(240, 320, CV_16U, cv::Scalar(1000))).toImageMsg());
+  sensor_msgs::ImagePtr truncated = cv_bridge::CvImage(h, "mono8", cv::Mat(240, 320, CV_8U, cv::Scalar(100))).toImageMsg();
+  truncated->data.resize(truncated->data.size() / 2);
+  image_pub_.publish(truncated);
   const ros::WallTime diag_deadline = ros::WallTime::now() + ros::WallDuration(15);
   while (!saw_error_ && ros::WallTime::now() < diag_deadline)
     ros::WallDuration(0.1).sleep();

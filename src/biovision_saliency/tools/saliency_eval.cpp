@@ -17,10 +17,13 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/saliency.hpp>
 
-#include "biovision_saliency/middlebury_flow.hpp"
-#include "biovision_saliency/saliency_metrics.hpp"
+#include "biovision_common/eval/middlebury_flow.hpp"
+#include "biovision_common/eval/saliency_metrics.hpp"
 #include "biovision_saliency/saliency_pipeline.hpp"
-#include "biovision_v1/tool_arguments.hpp"
+#include "biovision_common/tool_arguments.hpp"
+
+using biovision_common::SaliencyMetrics;
+using biovision_common::MiddleburyFlow;
 
 using namespace biovision_saliency;
 namespace fs = std::filesystem;
@@ -63,7 +66,7 @@ cv::Mat toFloat(const cv::Mat& m)
 
 int main(int argc, char** argv)
 {
-  const biovision_v1::ToolArguments args(
+  const biovision_common::ToolArguments args(
       argc, argv, kUsage, {"--stimuli", "--fixations", "--json", "--flow", "--threads", "--limit", "--final-blur"});
   const std::string stimuli = args.get("--stimuli"), fixations = args.get("--fixations");
   const std::string json_path = args.get("--json"), flow_root = args.get("--flow");

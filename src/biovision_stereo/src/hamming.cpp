@@ -1,18 +1,12 @@
 #include "biovision_stereo/hamming.hpp"
 
+#include "biovision_common/bit_count.hpp"
+#include "biovision_common/cpu_features.hpp"
+
 namespace biovision_stereo
 {
 namespace
 {
-int popcountScalar(std::uint64_t v)
-{
-  // SWAR bit count: the portable reference.
-  v = v - ((v >> 1) & 0x5555555555555555ULL);
-  v = (v & 0x3333333333333333ULL) + ((v >> 2) & 0x3333333333333333ULL);
-  v = (v + (v >> 4)) & 0x0F0F0F0F0F0F0F0FULL;
-  return static_cast<int>((v * 0x0101010101010101ULL) >> 56);
-}
-
 __attribute__((target("popcnt"))) void rowPopcnt(const PixelDescriptor* a, const PixelDescriptor* b, int width,
                                                  int shift, float missing, float* out)
 {
@@ -37,7 +31,7 @@ void rowScalar(const PixelDescriptor* a, const PixelDescriptor* b, int width, in
     out[x] = static_cast<float>(Hamming::distanceScalar(a[x], b[x - shift]));
 }
 
-const bool kHasPopcnt = __builtin_cpu_supports("popcnt");
+const bool kHasPopcnt = biovision_common::CpuFeatures::host().popcnt;
 }  // namespace
 
 void Hamming::row(const PixelDescriptor* a, const PixelDescriptor* b, int width, int shift, float missing, float* out)
@@ -59,7 +53,7 @@ int Hamming::distanceScalar(const PixelDescriptor& a, const PixelDescriptor& b)
 {
   int n = 0;
   for (int i = 0; i < 4; ++i)
-    n += popcountScalar(a.words[i] ^ b.words[i]);
+    n += biovision_common::countBits(a.words[i] ^ b.words[i]);
   return n;
 }
 

@@ -11,11 +11,16 @@
 
 #include "biovision_stereo/bio_bin_matcher.hpp"
 #include "biovision_stereo/disparity_dog.hpp"
-#include "biovision_stereo/disparity_metrics.hpp"
+#include "biovision_common/eval/disparity_metrics.hpp"
 #include "biovision_stereo/hamming.hpp"
-#include "biovision_stereo/middlebury_dataset.hpp"
+#include "biovision_common/eval/middlebury_dataset.hpp"
 #include "biovision_stereo/pixel_descriptor.hpp"
-#include "biovision_stereo/portable_float_map.hpp"
+#include "biovision_common/eval/portable_float_map.hpp"
+
+using biovision_common::MiddleburyDataset;
+using biovision_common::PortableFloatMap;
+using biovision_common::DisparityMetrics;
+using biovision_common::StereoScene;
 
 using namespace biovision_stereo;
 namespace fs = std::filesystem;

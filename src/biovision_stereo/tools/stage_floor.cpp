@@ -15,10 +15,12 @@
 
 #include "biovision_stereo/bio_bin_parameters.hpp"
 #include "biovision_stereo/hamming.hpp"
-#include "biovision_stereo/middlebury_dataset.hpp"
+#include "biovision_common/eval/middlebury_dataset.hpp"
 #include "biovision_stereo/pixel_descriptor.hpp"
 #include "biovision_v1/simple_cell_bank.hpp"
-#include "biovision_v1/tool_arguments.hpp"
+#include "biovision_common/tool_arguments.hpp"
+
+using biovision_common::MiddleburyDataset;
 
 using namespace biovision_stereo;
 
@@ -52,7 +54,7 @@ cv::Mat unitGray(const cv::Mat& bgr, cv::Size size)
 
 int main(int argc, char** argv)
 {
-  const biovision_v1::ToolArguments args(argc, argv, kUsage, {"--dataset", "--json", "--threads", "--repeats"});
+  const biovision_common::ToolArguments args(argc, argv, kUsage, {"--dataset", "--json", "--threads", "--repeats"});
   if (!args.has("--dataset"))
   {
     std::cerr << kUsage;

@@ -17,9 +17,13 @@
 #include <opencv2/stereo.hpp>
 
 #include "biovision_stereo/bio_bin_matcher.hpp"
-#include "biovision_stereo/disparity_metrics.hpp"
-#include "biovision_stereo/middlebury_dataset.hpp"
-#include "biovision_v1/tool_arguments.hpp"
+#include "biovision_common/eval/disparity_metrics.hpp"
+#include "biovision_common/eval/middlebury_dataset.hpp"
+#include "biovision_common/tool_arguments.hpp"
+
+using biovision_common::MiddleburyDataset;
+using biovision_common::DisparityMetrics;
+using biovision_common::StereoScene;
 
 using namespace biovision_stereo;
 
@@ -136,7 +140,7 @@ std::string metricsJson(const DisparityMetrics& m, double seconds)
 
 int main(int argc, char** argv)
 {
-  const biovision_v1::ToolArguments args(argc, argv, kUsage,
+  const biovision_common::ToolArguments args(argc, argv, kUsage,
                                          {"--dataset", "--json", "--methods", "--threads", "--scenes", "--repeats"});
   const std::string dataset = args.get("--dataset"), json_path = args.get("--json");
   const std::vector<std::string> methods = args.strings("--methods", "biobin,biobin_fast,bm,bm_fast,sgbm,binary_sgbm");

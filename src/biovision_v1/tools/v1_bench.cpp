@@ -16,7 +16,7 @@
 #include "biovision_v1/direct_gabor_bank.hpp"
 #include "biovision_v1/input_image.hpp"
 #include "biovision_v1/simple_cell_bank.hpp"
-#include "biovision_v1/tool_arguments.hpp"
+#include "biovision_common/tool_arguments.hpp"
 #include "biovision_v1/v1_pipeline.hpp"
 
 using namespace biovision_v1;
@@ -51,7 +51,7 @@ int main(int argc, char** argv)
   const char* shared_env = std::getenv("BIOVISION_SHARED");
   const std::string default_image = std::string(shared_env ? shared_env : "../shared") +
                                     "/data/stereo/middlebury-2001-2006/Art/view1.png";
-  const ToolArguments args(argc, argv, kUsage, {"--image", "--json", "--threads", "--repeats", "--width", "--height"});
+  const biovision_common::ToolArguments args(argc, argv, kUsage, {"--image", "--json", "--threads", "--repeats", "--width", "--height"});
   const std::string image_path = args.get("--image", default_image), json_path = args.get("--json");
   const int threads = static_cast<int>(args.number("--threads", 2));
   const int repeats = std::max(1, static_cast<int>(args.number("--repeats", 30)));

@@ -11,14 +11,17 @@
 #include <ros/package.h>
 #include <sensor_msgs/image_encodings.h>
 
-#include "biovision_recognition/stored_file.hpp"
+#include "biovision_common/stored_file.hpp"
+#include "biovision_ros_common/image_message_converter.hpp"
 #include "biovision_v1/input_image.hpp"
+
+using biovision_common::StoredFileError;
 
 namespace biovision_recognition
 {
 namespace enc = sensor_msgs::image_encodings;
 
-void RecognitionNodelet::onInit()
+void RecognitionNodelet::onInitNodelet()
 {
   ros::NodeHandle& nh = getNodeHandle();
   ros::NodeHandle& pnh = getPrivateNodeHandle();
@@ -28,7 +31,6 @@ void RecognitionNodelet::onInit()
                          ros::package::getPath("biovision_recognition") + "/models/v1_ldahash_128.bin");
   pnh.param<std::string>("memory_file", memory_file_, "");
   pnh.param("max_input_age", max_input_age_, 0.5);
-  pnh.param("lazy", lazy_, true);
 
   // Without a descriptor model the node cannot do anything: refuse to start rather than run blind.
   const auto descriptor = std::make_shared<const V1Descriptor>(DescriptorModel::load(model_file));
@@ -54,46 +56,39 @@ void RecognitionNodelet::onInit()
 
   reconfigure_server_ = std::make_unique<dynamic_reconfigure::Server<RecognitionConfig>>(reconfigure_mutex_, pnh);
   reconfigure_server_->setCallback([this](RecognitionConfig& c, uint32_t level) { reconfigure(c, level); });
-  diagnostics_.init(nh, pnh, getName(), "Recognition", "objects", 100.0, [this] { return !image_sub_; },
-                    "idle: nobody subscribes to objects", "recognising",
-                    [this](diagnostic_updater::DiagnosticStatusWrapper& s) { details(s); });
+  biovision_ros_common::DiagnosticsOptions options;
+  options.status_name = "Recognition";
+  options.rate_topic = "objects";
+  options.idle = [this] { return !isSubscribed(); };
+  options.idle_message = "idle: nobody subscribes to objects";
+  options.working_message = "recognising";
+  options.details = [this](diagnostic_updater::DiagnosticStatusWrapper& s) { details(s); };
+  diagnostics_.init(nh, pnh, getName(), options);
 
   learn_srv_ = nh.advertiseService("recognition/learn_object", &RecognitionNodelet::learn, this);
   forget_srv_ = nh.advertiseService("recognition/forget_object", &RecognitionNodelet::forget, this);
   list_srv_ = nh.advertiseService("recognition/list_objects", &RecognitionNodelet::list, this);
 
-  {
-    std::lock_guard<std::mutex> lock(connect_mutex_);
-    auto connect = [this](const auto&) { connectCallback(); };
-    objects_pub_ = nh.advertise<biovision_msgs::RecognizedObjectArray>(
-        "objects", 5, ros::SubscriberStatusCallback(connect), ros::SubscriberStatusCallback(connect));
-    debug_pub_ = it_->advertise("recognition/debug_image", 1, image_transport::SubscriberStatusCallback(connect),
-                                image_transport::SubscriberStatusCallback(connect));
-  }
-  if (!lazy_)
-    connectCallback();  // subscribe now: learning needs images even without a consumer
+  // ~lazy false (LazyNodelet) subscribes at once: learning needs images even without a consumer.
+  objects_pub_ = advertise<biovision_msgs::RecognizedObjectArray>(nh, "objects", 5);
+  debug_pub_ = advertiseImage(*it_, "recognition/debug_image", 1);
 }
 
-void RecognitionNodelet::connectCallback()
+void RecognitionNodelet::subscribe()
 {
-  std::lock_guard<std::mutex> lock(connect_mutex_);
-  const bool wanted = !lazy_ || objects_pub_.getNumSubscribers() > 0 || debug_pub_.getNumSubscribers() > 0;
   ros::NodeHandle& nh = getNodeHandle();
-  if (!wanted && image_sub_)
-  {
-    image_sub_.shutdown();
-    regions_sub_.shutdown();
-    disparity_sub_.shutdown();
-    info_sub_.shutdown();
-  }
-  else if (wanted && !image_sub_)
-  {
-    image_transport::TransportHints hints("raw", ros::TransportHints(), getPrivateNodeHandle());
-    image_sub_ = it_->subscribe("image", 2, &RecognitionNodelet::imageCallback, this, hints);
-    regions_sub_ = nh.subscribe("saliency/regions", 5, &RecognitionNodelet::regionsCallback, this);
-    disparity_sub_ = nh.subscribe("disparity", 2, &RecognitionNodelet::disparityCallback, this);
-    info_sub_ = nh.subscribe("camera_info", 2, &RecognitionNodelet::infoCallback, this);
-  }
+  image_sub_ = it_->subscribe("image", 2, &RecognitionNodelet::imageCallback, this, imageHints());
+  regions_sub_ = nh.subscribe("saliency/regions", 5, &RecognitionNodelet::regionsCallback, this);
+  disparity_sub_ = nh.subscribe("disparity", 2, &RecognitionNodelet::disparityCallback, this);
+  info_sub_ = nh.subscribe("camera_info", 2, &RecognitionNodelet::infoCallback, this);
+}
+
+void RecognitionNodelet::unsubscribe()
+{
+  image_sub_.shutdown();
+  regions_sub_.shutdown();
+  disparity_sub_.shutdown();
+  info_sub_.shutdown();
 }
 
 void RecognitionNodelet::reconfigure(RecognitionConfig& c, uint32_t /*level*/)
@@ -137,7 +132,7 @@ bool RecognitionNodelet::position(const cv::Rect& box, const cv::Size& image_siz
   cv::Mat d;
   try
   {
-    d = cv_bridge::toCvShare(disparity_->image, disparity_, enc::TYPE_32FC1)->image;
+    d = biovision_ros_common::ImageMessageConverter::toFloat32(disparity_->image);
   }
   catch (const std::exception&)
   {
@@ -175,13 +170,7 @@ void RecognitionNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
   cv::Mat bgr, gray;
   try
   {
-    const std::string& e = msg->encoding;
-    if (e == enc::MONO8 || e == enc::MONO16 || e == enc::BGR8)
-      bgr = cv_bridge::toCvShare(msg)->image;
-    else if (e == enc::RGB8 || e == enc::RGBA8 || e == enc::BGRA8)
-      bgr = cv_bridge::toCvShare(msg, enc::BGR8)->image;
-    else
-      throw std::invalid_argument("image encoding '" + e + "' is not mono8/mono16/bgr8/rgb8(a)/bgra8");
+    bgr = biovision_ros_common::ImageMessageConverter::toCv(*msg, biovision_ros_common::ImageMessageConverter::Depth::Keep);
     gray = biovision_v1::InputImage(bgr).gray();
   }
   catch (const std::exception& ex)

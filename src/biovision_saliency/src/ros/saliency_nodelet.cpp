@@ -10,11 +10,13 @@
 #include <pluginlib/class_list_macros.hpp>
 #include <sensor_msgs/image_encodings.h>
 
+#include "biovision_ros_common/image_message_converter.hpp"
+
 namespace biovision_saliency
 {
 namespace enc = sensor_msgs::image_encodings;
 
-void SaliencyNodelet::onInit()
+void SaliencyNodelet::onInitNodelet()
 {
   ros::NodeHandle& nh = getNodeHandle();
   ros::NodeHandle& pnh = getPrivateNodeHandle();
@@ -26,42 +28,40 @@ void SaliencyNodelet::onInit()
   reconfigure_server_ = std::make_unique<dynamic_reconfigure::Server<SaliencyConfig>>(reconfigure_mutex_, pnh);
   reconfigure_server_->setCallback([this](SaliencyConfig& c, uint32_t level) { reconfigure(c, level); });
 
-  diagnostics_.init(nh, pnh, getName(), "Saliency", "saliency/regions", 100.0, [this] { return !image_sub_; },
-                    "idle: nobody subscribes to saliency outputs", "processing",
-                    [this](diagnostic_updater::DiagnosticStatusWrapper& s) { details(s); });
+  biovision_ros_common::DiagnosticsOptions options;
+  options.status_name = "Saliency";
+  options.rate_topic = "saliency/regions";
+  options.idle = [this] { return !isSubscribed(); };
+  options.idle_message = "idle: nobody subscribes to saliency outputs";
+  options.details = [this](diagnostic_updater::DiagnosticStatusWrapper& s) { details(s); };
+  diagnostics_.init(nh, pnh, getName(), options);
+  // Called from imageCallback with state_mutex_ held.
+  image_clock_.onJumpBack([this] {
+    pipeline_->reset();
+    NODELET_WARN_THROTTLE(5.0, "saliency: image stamps went backwards; restarting motion and IoR");
+  });
   reset_srv_ = nh.advertiseService("saliency/reset_inhibition", &SaliencyNodelet::resetInhibition, this);
 
-  std::lock_guard<std::mutex> lock(connect_mutex_);
-  auto connect = [this](const auto&) { connectCallback(); };
-  regions_pub_ = nh.advertise<biovision_msgs::SalientRegionArray>(
-      "saliency/regions", 5, ros::SubscriberStatusCallback(connect), ros::SubscriberStatusCallback(connect));
-  map_pub_ = it_->advertise("saliency/map", 1, image_transport::SubscriberStatusCallback(connect),
-                            image_transport::SubscriberStatusCallback(connect));
-  thresholded_pub_ = it_->advertise("saliency/thresholded", 1, image_transport::SubscriberStatusCallback(connect),
-                                    image_transport::SubscriberStatusCallback(connect));
+  regions_pub_ = advertise<biovision_msgs::SalientRegionArray>(nh, "saliency/regions", 5);
+  map_pub_ = advertiseImage(*it_, "saliency/map", 1);
+  thresholded_pub_ = advertiseImage(*it_, "saliency/thresholded", 1);
 }
 
-void SaliencyNodelet::connectCallback()
+void SaliencyNodelet::subscribe()
 {
-  std::lock_guard<std::mutex> lock(connect_mutex_);
-  const bool wanted = regions_pub_.getNumSubscribers() > 0 || map_pub_.getNumSubscribers() > 0 ||
-                      thresholded_pub_.getNumSubscribers() > 0;
   ros::NodeHandle& nh = getNodeHandle();
-  if (!wanted && image_sub_)
-  {
-    image_sub_.shutdown();
-    disparity_sub_.shutdown();
-    joint_sub_.shutdown();
-    info_sub_.shutdown();
-  }
-  else if (wanted && !image_sub_)
-  {
-    image_transport::TransportHints hints("raw", ros::TransportHints(), getPrivateNodeHandle());
-    image_sub_ = it_->subscribe("image", 2, &SaliencyNodelet::imageCallback, this, hints);
-    disparity_sub_ = nh.subscribe("disparity", 2, &SaliencyNodelet::disparityCallback, this);
-    joint_sub_ = nh.subscribe("joint_states", 20, &SaliencyNodelet::jointCallback, this);
-    info_sub_ = nh.subscribe("camera_info", 2, &SaliencyNodelet::infoCallback, this);
-  }
+  image_sub_ = it_->subscribe("image", 2, &SaliencyNodelet::imageCallback, this, imageHints());
+  disparity_sub_ = nh.subscribe("disparity", 2, &SaliencyNodelet::disparityCallback, this);
+  joint_sub_ = nh.subscribe("joint_states", 20, &SaliencyNodelet::jointCallback, this);
+  info_sub_ = nh.subscribe("camera_info", 2, &SaliencyNodelet::infoCallback, this);
+}
+
+void SaliencyNodelet::unsubscribe()
+{
+  image_sub_.shutdown();
+  disparity_sub_.shutdown();
+  joint_sub_.shutdown();
+  info_sub_.shutdown();
 }
 
 void SaliencyNodelet::reconfigure(SaliencyConfig& c, uint32_t /*level*/)
@@ -146,20 +146,8 @@ void SaliencyNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
   SaliencyResult result;
   try
   {
-    if (!last_image_stamp_.isZero() && msg->header.stamp < last_image_stamp_)
-    {
-      pipeline_->reset();  // time went backwards (bag loop): motion and IoR restart
-      NODELET_WARN_THROTTLE(5.0, "saliency: image stamps went backwards; restarting motion and IoR");
-    }
-    last_image_stamp_ = msg->header.stamp;
-    const std::string& e = msg->encoding;
-    cv::Mat image;
-    if (e == enc::BGR8 || e == enc::MONO8)
-      image = cv_bridge::toCvShare(msg)->image;
-    else if (e == enc::RGB8 || e == enc::RGBA8 || e == enc::BGRA8)
-      image = cv_bridge::toCvShare(msg, enc::BGR8)->image;
-    else
-      throw std::invalid_argument("image encoding '" + e + "' is not mono8/bgr8/rgb8(a)/bgra8");
+    image_clock_.observe(msg->header.stamp);
+    const cv::Mat image = biovision_ros_common::ImageMessageConverter::toCv(*msg);
 
     // Optional inputs: used only when they are recent relative to this image.
     cv::Mat disparity;
@@ -169,7 +157,7 @@ void SaliencyNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
       const double age = std::abs((msg->header.stamp - disparity_->header.stamp).toSec());
       if (age <= max_input_age_)
       {
-        disparity = cv_bridge::toCvShare(disparity_->image, disparity_)->image.clone();
+        disparity = biovision_ros_common::ImageMessageConverter::toFloat32(disparity_->image).clone();
         disparity.setTo(-1.f, disparity < disparity_->min_disparity);  // stereo_image_proc's invalid marking
         channels += "+disparity";
       }

@@ -12,6 +12,7 @@
 #include <sensor_msgs/image_encodings.h>
 #include <stereo_msgs/DisparityImage.h>
 
+#include "biovision_ros_common/image_message_converter.hpp"
 #include "biovision_v1/wavelength_list.hpp"
 
 namespace biovision_stereo
@@ -20,21 +21,17 @@ namespace enc = sensor_msgs::image_encodings;
 
 namespace
 {
-// mono8 / bgr8 / rgb8(a) / bgra8 -> what BioBinMatcher reads. Throws on anything else.
-cv::Mat toMatcherInput(const sensor_msgs::ImageConstPtr& msg, const char* which)
+// What BioBinMatcher reads (8-bit BGR or grey), naming the image in any conversion error.
+cv::Mat toMatcherInput(const sensor_msgs::Image& image, const char* which)
 {
-  const std::string& e = msg->encoding;
-  if (e != enc::MONO8 && e != enc::BGR8 && e != enc::RGB8 && e != enc::BGRA8 && e != enc::RGBA8)
-    throw std::invalid_argument(std::string(which) + " image has encoding '" + e +
-                                "'; expected mono8, bgr8, rgb8, bgra8 or rgba8 (debayer/rectify first)");
-  cv_bridge::CvImageConstPtr cv = cv_bridge::toCvShare(msg);
-  if (e == enc::RGB8 || e == enc::RGBA8)
+  try
   {
-    cv::Mat bgr;
-    cv::cvtColor(cv->image, bgr, e == enc::RGB8 ? cv::COLOR_RGB2BGR : cv::COLOR_RGBA2BGR);
-    return bgr;
+    return biovision_ros_common::ImageMessageConverter::toCv(image);
   }
-  return cv->image;
+  catch (const biovision_ros_common::ImageConversionError& e)
+  {
+    throw std::invalid_argument(std::string(which) + " image: " + e.what());
+  }
 }
 
 void checkInfo(const sensor_msgs::CameraInfo& info, const sensor_msgs::Image& image, const char* which)
@@ -55,7 +52,7 @@ void checkInfo(const sensor_msgs::CameraInfo& info, const sensor_msgs::Image& im
 
 BioBinDisparityNodelet::~BioBinDisparityNodelet() = default;
 
-void BioBinDisparityNodelet::onInit()
+void BioBinDisparityNodelet::onInitNodelet()
 {
   ros::NodeHandle& nh = getNodeHandle();
   ros::NodeHandle& pnh = getPrivateNodeHandle();
@@ -83,42 +80,37 @@ void BioBinDisparityNodelet::onInit()
   left_sub_.registerCallback(boost::function<void(const sensor_msgs::ImageConstPtr&)>(
       [this](const sensor_msgs::ImageConstPtr&) { ++left_images_; }));
   last_pair_time_ = ros::WallTime::now();
-  diagnostics_.init(nh, pnh, getName(), "BioBin disparity", "disparity", 60.0, [this] { return !subscribed_; },
-                    "idle: nobody subscribes to disparity or obstacle_mask", "matching",
-                    [this](diagnostic_updater::DiagnosticStatusWrapper& s) { details(s); },
-                    [this] { watchSynchronisation(); });
+  biovision_ros_common::DiagnosticsOptions options;
+  options.status_name = "BioBin disparity";
+  options.rate_topic = "disparity";
+  options.default_max_rate = 60.0;
+  options.idle = [this] { return !isSubscribed(); };
+  options.idle_message = "idle: nobody subscribes to disparity or obstacle_mask";
+  options.working_message = "matching";
+  options.details = [this](diagnostic_updater::DiagnosticStatusWrapper& s) { details(s); };
+  options.on_tick = [this] { watchSynchronisation(); };
+  diagnostics_.init(nh, pnh, getName(), options);
 
-  std::lock_guard<std::mutex> lock(connect_mutex_);
-  auto connect = [this](const auto&) { connectCallback(); };
-  disparity_pub_ = nh.advertise<stereo_msgs::DisparityImage>("disparity", 1, ros::SubscriberStatusCallback(connect),
-                                                             ros::SubscriberStatusCallback(connect));
-  obstacle_pub_ = it_->advertise("obstacle_mask", 1, image_transport::SubscriberStatusCallback(connect),
-                                 image_transport::SubscriberStatusCallback(connect));
+  disparity_pub_ = advertise<stereo_msgs::DisparityImage>(nh, "disparity", 1);
+  obstacle_pub_ = advertiseImage(*it_, "obstacle_mask", 1);
 }
 
-void BioBinDisparityNodelet::connectCallback()
+void BioBinDisparityNodelet::subscribe()
 {
-  std::lock_guard<std::mutex> lock(connect_mutex_);
-  const bool wanted = disparity_pub_.getNumSubscribers() > 0 || obstacle_pub_.getNumSubscribers() > 0;
-  if (!wanted && subscribed_)
-  {
-    left_sub_.unsubscribe();
-    left_info_sub_.unsubscribe();
-    right_sub_.unsubscribe();
-    right_info_sub_.unsubscribe();
-    subscribed_ = false;
-  }
-  else if (wanted && !subscribed_)
-  {
-    ros::NodeHandle& nh = getNodeHandle();
-    const std::string image = use_color_ ? "image_rect_color" : "image_rect";
-    image_transport::TransportHints hints("raw", ros::TransportHints(), getPrivateNodeHandle());
-    left_sub_.subscribe(*it_, "left/" + image, 1, hints);
-    left_info_sub_.subscribe(nh, "left/camera_info", 1);
-    right_sub_.subscribe(*it_, "right/" + image, 1, hints);
-    right_info_sub_.subscribe(nh, "right/camera_info", 1);
-    subscribed_ = true;
-  }
+  ros::NodeHandle& nh = getNodeHandle();
+  const std::string image = use_color_ ? "image_rect_color" : "image_rect";
+  left_sub_.subscribe(*it_, "left/" + image, 1, imageHints());
+  left_info_sub_.subscribe(nh, "left/camera_info", 1);
+  right_sub_.subscribe(*it_, "right/" + image, 1, imageHints());
+  right_info_sub_.subscribe(nh, "right/camera_info", 1);
+}
+
+void BioBinDisparityNodelet::unsubscribe()
+{
+  left_sub_.unsubscribe();
+  left_info_sub_.unsubscribe();
+  right_sub_.unsubscribe();
+  right_info_sub_.unsubscribe();
 }
 
 void BioBinDisparityNodelet::reconfigure(BioBinDisparityConfig& config, uint32_t /*level*/)
@@ -189,10 +181,10 @@ void BioBinDisparityNodelet::pairCallback(const sensor_msgs::ImageConstPtr& left
     if (!(model.baseline() > 0.0) || !std::isfinite(model.baseline()))
       throw std::invalid_argument("camera_info gives no positive baseline (right P[3] must be -fx * T)");
     const auto start = std::chrono::steady_clock::now();
-    result = matcher_->compute(toMatcherInput(left, "left"), toMatcherInput(right, "right"));
+    result = matcher_->compute(toMatcherInput(*left, "left"), toMatcherInput(*right, "right"));
     last_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
-  catch (const std::exception& e)  // invalid_argument, cv_bridge::Exception, cv::Exception
+  catch (const std::exception& e)  // invalid_argument, cv::Exception
   {
     diagnostics_.health().reportError(getName(), std::string("dropping stereo pair: ") + e.what());
     return;

@@ -9,6 +9,7 @@
 #include <pluginlib/class_list_macros.hpp>
 #include <sensor_msgs/image_encodings.h>
 
+#include "biovision_ros_common/image_message_converter.hpp"
 #include "biovision_v1/input_image.hpp"
 #include "biovision_v1/wavelength_list.hpp"
 
@@ -16,34 +17,9 @@ namespace biovision_v1
 {
 namespace enc = sensor_msgs::image_encodings;
 
-namespace
-{
-// Camera encodings -> what InputImage reads (BGR order for colour). Throws on encodings we cannot read.
-cv::Mat toInput(const sensor_msgs::ImageConstPtr& msg)
-{
-  const std::string& e = msg->encoding;
-  if (enc::isBayer(e) || e == enc::YUV422)
-    throw std::invalid_argument("unsupported encoding '" + e + "': debayer first (image_proc)");
-  cv_bridge::CvImageConstPtr cv = cv_bridge::toCvShare(msg);
-  if (e == enc::RGB8 || e == enc::RGB16)
-  {
-    cv::Mat bgr;
-    cv::cvtColor(cv->image, bgr, cv::COLOR_RGB2BGR);
-    return bgr;
-  }
-  if (e == enc::RGBA8 || e == enc::RGBA16)
-  {
-    cv::Mat bgr;
-    cv::cvtColor(cv->image, bgr, cv::COLOR_RGBA2BGR);
-    return bgr;
-  }
-  return cv->image;
-}
-}  // namespace
-
 V1CellsNodelet::~V1CellsNodelet() = default;
 
-void V1CellsNodelet::onInit()
+void V1CellsNodelet::onInitNodelet()
 {
   ros::NodeHandle& nh = getNodeHandle();
   ros::NodeHandle& pnh = getPrivateNodeHandle();
@@ -53,32 +29,26 @@ void V1CellsNodelet::onInit()
   reconfigure_server_ = std::make_unique<dynamic_reconfigure::Server<V1CellsConfig>>(reconfigure_mutex_, pnh);
   reconfigure_server_->setCallback([this](V1CellsConfig& c, uint32_t level) { reconfigure(c, level); });
 
-  diagnostics_.init(nh, pnh, getName(), "V1 cells", "keypoints", 100.0, [this] { return !image_sub_; },
-                    "idle: nobody subscribes to keypoints or debug_image", "processing",
-                    [this](diagnostic_updater::DiagnosticStatusWrapper& s) { details(s); });
+  biovision_ros_common::DiagnosticsOptions options;
+  options.status_name = "V1 cells";
+  options.rate_topic = "keypoints";
+  options.idle = [this] { return !isSubscribed(); };
+  options.idle_message = "idle: nobody subscribes to keypoints or debug_image";
+  options.details = [this](diagnostic_updater::DiagnosticStatusWrapper& s) { details(s); };
+  diagnostics_.init(nh, pnh, getName(), options);
 
-  std::lock_guard<std::mutex> lock(connect_mutex_);
-  auto connect = [this](const auto&) { connectCallback(); };
-  keypoints_pub_ = nh.advertise<biovision_msgs::KeypointArray>(
-      "keypoints", 5, ros::SubscriberStatusCallback(connect), ros::SubscriberStatusCallback(connect));
-  debug_pub_ = it_->advertise("debug_image", 1, image_transport::SubscriberStatusCallback(connect),
-                              image_transport::SubscriberStatusCallback(connect));
+  keypoints_pub_ = advertise<biovision_msgs::KeypointArray>(nh, "keypoints", 5);
+  debug_pub_ = advertiseImage(*it_, "debug_image", 1);
 }
 
-void V1CellsNodelet::connectCallback()
+void V1CellsNodelet::subscribe()
 {
-  std::lock_guard<std::mutex> lock(connect_mutex_);
-  const bool wanted = keypoints_pub_.getNumSubscribers() > 0 || debug_pub_.getNumSubscribers() > 0;
-  if (!wanted && image_sub_)
-  {
-    NODELET_DEBUG("no subscribers: unsubscribing from %s", image_sub_.getTopic().c_str());
-    image_sub_.shutdown();
-  }
-  else if (wanted && !image_sub_)
-  {
-    image_transport::TransportHints hints("raw", ros::TransportHints(), getPrivateNodeHandle());
-    image_sub_ = it_->subscribe("image", 1, &V1CellsNodelet::imageCallback, this, hints);
-  }
+  image_sub_ = it_->subscribe("image", 1, &V1CellsNodelet::imageCallback, this, imageHints());
+}
+
+void V1CellsNodelet::unsubscribe()
+{
+  image_sub_.shutdown();
 }
 
 void V1CellsNodelet::reconfigure(V1CellsConfig& config, uint32_t /*level*/)
@@ -127,10 +97,10 @@ void V1CellsNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
     std::lock_guard<std::mutex> lock(pipeline_mutex_);
     try
     {
-      input = toInput(msg);
+      input = biovision_ros_common::ImageMessageConverter::toCv(*msg, biovision_ros_common::ImageMessageConverter::Depth::Keep);
       result = pipeline_->process(input, want_debug);
     }
-    catch (const std::exception& e)  // invalid_argument, cv_bridge::Exception, cv::Exception
+    catch (const std::exception& e)  // ImageConversionError, invalid_argument, cv::Exception
     {
       diagnostics_.health().reportError(getName(), "dropping image " + std::to_string(msg->width) + "x" + std::to_string(msg->height) +
                                          " '" + msg->encoding + "' from " + image_sub_.getTopic() + ": " + e.what());

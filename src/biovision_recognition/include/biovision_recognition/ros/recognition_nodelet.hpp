@@ -20,7 +20,8 @@
 #include <stereo_msgs/DisparityImage.h>
 
 #include "biovision_recognition/object_recognizer.hpp"
-#include "biovision_v1/ros/nodelet_diagnostics.hpp"
+#include "biovision_ros_common/lazy_nodelet.hpp"
+#include "biovision_ros_common/nodelet_diagnostics.hpp"
 
 namespace biovision_recognition
 {
@@ -30,11 +31,12 @@ namespace biovision_recognition
 /// `disparity` and `camera_info` each object also gets its position in the camera frame. Services
 /// `recognition/learn_object`, `recognition/forget_object`, `recognition/list_objects` edit the object
 /// memory at run time; `~memory_file` is loaded at start and rewritten (atomically) after every edit.
-class RecognitionNodelet : public nodelet::Nodelet
+class RecognitionNodelet : public biovision_ros_common::LazyNodelet
 {
 private:
-  void onInit() override;
-  void connectCallback();
+  void onInitNodelet() override;
+  void subscribe() override;
+  void unsubscribe() override;
   void imageCallback(const sensor_msgs::ImageConstPtr& msg);
   void regionsCallback(const biovision_msgs::SalientRegionArrayConstPtr& msg);
   void disparityCallback(const stereo_msgs::DisparityImageConstPtr& msg);
@@ -54,7 +56,6 @@ private:
   ros::Publisher objects_pub_;
   image_transport::Publisher debug_pub_;
   ros::ServiceServer learn_srv_, forget_srv_, list_srv_;
-  std::mutex connect_mutex_;
 
   std::mutex state_mutex_;  // recogniser, memory and the latest inputs
   std::unique_ptr<ObjectRecognizer> recognizer_;
@@ -62,15 +63,14 @@ private:
   std::string memory_file_;
   int max_regions_ = 3;
   double max_input_age_ = 0.5;
-  bool lazy_ = true;
   cv::Mat last_gray_;
   biovision_msgs::SalientRegionArrayConstPtr regions_;
   stereo_msgs::DisparityImageConstPtr disparity_;
   sensor_msgs::CameraInfoConstPtr info_;
 
+  boost::recursive_mutex reconfigure_mutex_;  // dynamic_reconfigure::Server takes a boost mutex; outlives it
   std::unique_ptr<dynamic_reconfigure::Server<RecognitionConfig>> reconfigure_server_;
-  boost::recursive_mutex reconfigure_mutex_;
-  biovision_v1::NodeletDiagnostics diagnostics_;
+  biovision_ros_common::NodeletDiagnostics diagnostics_;
   ObjectRecognizer::Statistics last_stats_;
   size_t last_objects_ = 0;
   std::string model_id_;

@@ -20,7 +20,8 @@
 #include <stereo_msgs/DisparityImage.h>
 
 #include "biovision_saliency/saliency_pipeline.hpp"
-#include "biovision_v1/ros/nodelet_diagnostics.hpp"
+#include "biovision_ros_common/lazy_nodelet.hpp"
+#include "biovision_ros_common/nodelet_diagnostics.hpp"
 
 namespace biovision_saliency
 {
@@ -29,11 +30,12 @@ namespace biovision_saliency
 /// the map degrades to the channels it has. Publishes `saliency/map` (32FC1, working resolution),
 /// `saliency/thresholded` (mono8) and `saliency/regions` (FoA order); subscribes only while one of them
 /// has a subscriber. Service `saliency/reset_inhibition` clears the IoR memory.
-class SaliencyNodelet : public nodelet::Nodelet
+class SaliencyNodelet : public biovision_ros_common::LazyNodelet
 {
 private:
-  void onInit() override;
-  void connectCallback();
+  void onInitNodelet() override;
+  void subscribe() override;
+  void unsubscribe() override;
   void imageCallback(const sensor_msgs::ImageConstPtr& msg);
   void disparityCallback(const stereo_msgs::DisparityImageConstPtr& msg);
   void jointCallback(const sensor_msgs::JointStateConstPtr& msg);
@@ -48,7 +50,6 @@ private:
   image_transport::Publisher map_pub_, thresholded_pub_;
   ros::Publisher regions_pub_;
   ros::ServiceServer reset_srv_;
-  std::mutex connect_mutex_;
 
   std::mutex state_mutex_;  // pipeline and the latest optional inputs
   std::unique_ptr<SaliencyPipeline> pipeline_;
@@ -58,11 +59,11 @@ private:
   ros::Time joints_stamp_;
   std::string pan_joint_ = "head_pan_joint", tilt_joint_ = "head_tilt_joint";
   double max_input_age_ = 0.5;
-  ros::Time last_image_stamp_;
+  biovision_ros_common::ClockJumpGuard image_clock_{0.0};  // image stamps going back: motion and IoR restart
 
+  boost::recursive_mutex reconfigure_mutex_;  // dynamic_reconfigure::Server takes a boost mutex; outlives it
   std::unique_ptr<dynamic_reconfigure::Server<SaliencyConfig>> reconfigure_server_;
-  boost::recursive_mutex reconfigure_mutex_;  // dynamic_reconfigure::Server takes a boost mutex
-  biovision_v1::NodeletDiagnostics diagnostics_;
+  biovision_ros_common::NodeletDiagnostics diagnostics_;
   double last_ms_ = 0.0;
   size_t last_regions_ = 0;
   std::string last_channels_;

@@ -22,7 +22,8 @@
 #include <sensor_msgs/Image.h>
 
 #include "biovision_stereo/bio_bin_matcher.hpp"
-#include "biovision_v1/ros/nodelet_diagnostics.hpp"
+#include "biovision_ros_common/lazy_nodelet.hpp"
+#include "biovision_ros_common/nodelet_diagnostics.hpp"
 
 namespace biovision_stereo
 {
@@ -32,7 +33,7 @@ namespace biovision_stereo
 /// (~approximate_sync); publishes stereo_msgs/DisparityImage on `disparity` with invalid pixels
 /// below min_disparity as stereo_image_proc does, and a mono8 `obstacle_mask` of pixels nearer than
 /// ~obstacle_distance.
-class BioBinDisparityNodelet : public nodelet::Nodelet
+class BioBinDisparityNodelet : public biovision_ros_common::LazyNodelet
 {
 public:
   ~BioBinDisparityNodelet() override;
@@ -43,8 +44,9 @@ private:
   using ApproximatePolicy = message_filters::sync_policies::ApproximateTime<sensor_msgs::Image, sensor_msgs::CameraInfo,
                                                                             sensor_msgs::Image, sensor_msgs::CameraInfo>;
 
-  void onInit() override;
-  void connectCallback();
+  void onInitNodelet() override;
+  void subscribe() override;
+  void unsubscribe() override;
   void pairCallback(const sensor_msgs::ImageConstPtr& left, const sensor_msgs::CameraInfoConstPtr& left_info,
                     const sensor_msgs::ImageConstPtr& right, const sensor_msgs::CameraInfoConstPtr& right_info);
   void reconfigure(BioBinDisparityConfig& config, uint32_t level);
@@ -58,18 +60,16 @@ private:
   std::unique_ptr<message_filters::Synchronizer<ApproximatePolicy>> approximate_sync_;
   ros::Publisher disparity_pub_;
   image_transport::Publisher obstacle_pub_;
-  std::mutex connect_mutex_;
-  bool subscribed_ = false;
   bool use_color_ = true;
   int queue_size_ = 5;
 
   std::mutex matcher_mutex_;
   std::unique_ptr<BioBinMatcher> matcher_;
   double obstacle_distance_ = 1.0;
+  boost::recursive_mutex reconfigure_mutex_;  // dynamic_reconfigure::Server takes a boost mutex; outlives it
   std::unique_ptr<dynamic_reconfigure::Server<BioBinDisparityConfig>> reconfigure_server_;
-  boost::recursive_mutex reconfigure_mutex_;  // dynamic_reconfigure::Server takes a boost mutex
 
-  biovision_v1::NodeletDiagnostics diagnostics_;
+  biovision_ros_common::NodeletDiagnostics diagnostics_;
   double last_ms_ = 0.0, last_valid_fraction_ = 0.0;
   // Watchdog for pairs the synchroniser never matches (e.g. different stamps with exact sync).
   std::atomic<unsigned> left_images_{0}, pairs_{0};

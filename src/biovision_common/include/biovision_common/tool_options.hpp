@@ -1,0 +1,39 @@
+#pragma once
+
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+namespace biovision_common
+{
+/// Command-line options of every evaluation, training and benchmark tool, parsed by CLI11 (Debian's
+/// libcli11-dev): typed and strict, so `--threads x` is an error naming the option, not 0.
+///
+///   ToolOptions options("stereo_eval", "Evaluates BioBin against OpenCV on Middlebury scenes.");
+///   int threads = 2;
+///   options.app().add_option("--threads", threads, "worker threads")->check(CLI::PositiveNumber);
+///   options.parse(argc, argv);
+class ToolOptions
+{
+public:
+  ToolOptions(const std::string& tool, const std::string& description);
+
+  /// Where options are declared (add_option, add_flag; `->delimiter(',')` for comma lists).
+  CLI::App& app() { return app_; }
+
+  /// Parses argv. Prints the usage and exits 0 on --help; prints the error and exits 2 on an unknown
+  /// option, a missing or ill-typed value, or a failed check.
+  void parse(int argc, char** argv);
+
+  /// The options as given ("--threads 2 --json out.json"), to record how a result was made.
+  const std::string& command() const { return command_; }
+
+private:
+  CLI::App app_;
+  std::string command_;
+};
+
+/// Writes `document` to `path` atomically, pretty-printed with a trailing newline. Throws FileError.
+void writeJsonFile(const std::string& path, const nlohmann::json& document);
+}  // namespace biovision_common

@@ -1,0 +1,239 @@
+#include "biovision_common/hamming_distance.hpp"
+
+// GCC 12 warns inside its own AVX-512 intrinsics (their undefined pass-through operand): not ours.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <immintrin.h>
+
+#include <stdexcept>
+
+#include "biovision_common/bit_count.hpp"
+#include "biovision_common/cpu_features.hpp"
+
+namespace biovision_common
+{
+namespace
+{
+void scalarDistances(const uint64_t* q, const uint64_t* c, size_t count, int words, uint16_t* out)
+{
+  for (size_t i = 0; i < count; ++i, c += words)
+    out[i] = static_cast<uint16_t>(hammingDistanceReference(q, c, words));
+}
+
+__attribute__((target("popcnt"))) void popcntDistances(const uint64_t* q, const uint64_t* c, size_t count, int words,
+                                                         uint16_t* out)
+{
+  switch (words)
+  {
+    case 1:
+      for (size_t i = 0; i < count; ++i)
+        out[i] = static_cast<uint16_t>(_mm_popcnt_u64(q[0] ^ c[i]));
+      return;
+    case 2:
+      for (size_t i = 0; i < count; ++i, c += 2)
+        out[i] = static_cast<uint16_t>(_mm_popcnt_u64(q[0] ^ c[0]) + _mm_popcnt_u64(q[1] ^ c[1]));
+      return;
+    default:
+      for (size_t i = 0; i < count; ++i, c += words)
+      {
+        uint64_t d = 0;
+        for (int w = 0; w < words; ++w)
+          d += _mm_popcnt_u64(q[w] ^ c[w]);
+        out[i] = static_cast<uint16_t>(d);
+      }
+  }
+}
+
+// Per-64-bit-lane popcount of a 256-bit vector: nibble look-up, then SAD against zero.
+__attribute__((target("avx2"))) inline __m256i popcountLanes256(__m256i v)
+{
+  const __m256i lut = _mm256_setr_epi8(0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4, 0, 1, 1, 2, 1, 2, 2, 3, 1, 2,
+                                       2, 3, 2, 3, 3, 4);
+  const __m256i low = _mm256_set1_epi8(0x0f);
+  const __m256i lo = _mm256_shuffle_epi8(lut, _mm256_and_si256(v, low));
+  const __m256i hi = _mm256_shuffle_epi8(lut, _mm256_and_si256(_mm256_srli_epi16(v, 4), low));
+  return _mm256_sad_epu8(_mm256_add_epi8(lo, hi), _mm256_setzero_si256());
+}
+
+__attribute__((target("avx2,popcnt"))) void avx2Distances(const uint64_t* q, const uint64_t* c, size_t count,
+                                                            int words, uint16_t* out)
+{
+  size_t i = 0;
+  if (words == 1)
+  {
+    const __m256i qv = _mm256_set1_epi64x(static_cast<long long>(q[0]));
+    alignas(32) uint64_t lanes[4];
+    for (; i + 4 <= count; i += 4)
+    {
+      const __m256i v = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(c + i));
+      _mm256_store_si256(reinterpret_cast<__m256i*>(lanes), popcountLanes256(_mm256_xor_si256(v, qv)));
+      for (int k = 0; k < 4; ++k)
+        out[i + k] = static_cast<uint16_t>(lanes[k]);
+    }
+  }
+  else if (words == 2)
+  {
+    const __m256i qv = _mm256_setr_epi64x(static_cast<long long>(q[0]), static_cast<long long>(q[1]),
+                                          static_cast<long long>(q[0]), static_cast<long long>(q[1]));
+    alignas(32) uint64_t lanes[4];
+    for (; i + 4 <= count; i += 4)
+    {
+      const __m256i a = popcountLanes256(
+          _mm256_xor_si256(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(c + 2 * i)), qv));
+      const __m256i b = popcountLanes256(
+          _mm256_xor_si256(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(c + 2 * i + 4)), qv));
+      // a = [c0w0 c0w1 c1w0 c1w1], b = [c2w0 c2w1 c3w0 c3w1] -> [c0 c2 c1 c3] -> [c0 c1 c2 c3]
+      const __m256i sum = _mm256_add_epi64(_mm256_unpacklo_epi64(a, b), _mm256_unpackhi_epi64(a, b));
+      _mm256_store_si256(reinterpret_cast<__m256i*>(lanes), _mm256_permute4x64_epi64(sum, 0xD8));
+      for (int k = 0; k < 4; ++k)
+        out[i + k] = static_cast<uint16_t>(lanes[k]);
+    }
+  }
+  else
+  {
+    alignas(32) uint64_t lanes[4];
+    for (; i < count; ++i)
+    {
+      const uint64_t* ci = c + i * words;
+      __m256i acc = _mm256_setzero_si256();
+      for (int w = 0; w < words; w += 4)
+      {
+        const __m256i v = _mm256_xor_si256(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(ci + w)),
+                                           _mm256_loadu_si256(reinterpret_cast<const __m256i*>(q + w)));
+        acc = _mm256_add_epi64(acc, popcountLanes256(v));
+      }
+      _mm256_store_si256(reinterpret_cast<__m256i*>(lanes), acc);
+      out[i] = static_cast<uint16_t>(lanes[0] + lanes[1] + lanes[2] + lanes[3]);
+    }
+  }
+  if (i < count)
+    popcntDistances(q, c + i * words, count - i, words, out + i);
+}
+
+__attribute__((target("avx512f,avx512vpopcntdq,popcnt"))) void avx512Distances(const uint64_t* q, const uint64_t* c,
+                                                                                 size_t count, int words,
+                                                                                 uint16_t* out)
+{
+  size_t i = 0;
+  if (words == 1)
+  {
+    const __m512i qv = _mm512_set1_epi64(static_cast<long long>(q[0]));
+    for (; i + 8 <= count; i += 8)
+    {
+      const __m512i p = _mm512_popcnt_epi64(_mm512_xor_si512(_mm512_loadu_si512(c + i), qv));
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(out + i), _mm512_cvtepi64_epi16(p));
+    }
+  }
+  else if (words == 2)
+  {
+    const __m512i qv = _mm512_set4_epi64(static_cast<long long>(q[1]), static_cast<long long>(q[0]),
+                                         static_cast<long long>(q[1]), static_cast<long long>(q[0]));
+    const __m512i even = _mm512_setr_epi64(0, 2, 4, 6, 8, 10, 12, 14);
+    const __m512i odd = _mm512_setr_epi64(1, 3, 5, 7, 9, 11, 13, 15);
+    for (; i + 8 <= count; i += 8)
+    {
+      const __m512i a = _mm512_popcnt_epi64(_mm512_xor_si512(_mm512_loadu_si512(c + 2 * i), qv));
+      const __m512i b = _mm512_popcnt_epi64(_mm512_xor_si512(_mm512_loadu_si512(c + 2 * i + 8), qv));
+      const __m512i sum =
+          _mm512_add_epi64(_mm512_permutex2var_epi64(a, even, b), _mm512_permutex2var_epi64(a, odd, b));
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(out + i), _mm512_cvtepi64_epi16(sum));
+    }
+  }
+  else if (words == 8)
+  {
+    for (; i < count; ++i)
+    {
+      const __m512i v = _mm512_xor_si512(_mm512_loadu_si512(c + i * 8), _mm512_loadu_si512(q));
+      out[i] = static_cast<uint16_t>(_mm512_reduce_add_epi64(_mm512_popcnt_epi64(v)));
+    }
+  }
+  else  // 4 words: two codes per vector
+  {
+    const __m512i qv = _mm512_broadcast_i64x4(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(q)));
+    for (; i + 2 <= count; i += 2)
+    {
+      const __m512i p = _mm512_popcnt_epi64(_mm512_xor_si512(_mm512_loadu_si512(c + 4 * i), qv));
+      out[i] = static_cast<uint16_t>(_mm512_mask_reduce_add_epi64(0x0F, p));
+      out[i + 1] = static_cast<uint16_t>(_mm512_mask_reduce_add_epi64(0xF0, p));
+    }
+  }
+  if (i < count)
+    popcntDistances(q, c + i * words, count - i, words, out + i);
+}
+
+bool available(HammingPath path)
+{
+  switch (path)
+  {
+    case HammingPath::Scalar:
+      return true;
+    case HammingPath::Popcnt:
+      return CpuFeatures::host().popcnt;
+    case HammingPath::Avx2:
+      return CpuFeatures::host().avx2 && CpuFeatures::host().popcnt;
+    case HammingPath::Avx512:
+      return CpuFeatures::host().avx512f && CpuFeatures::host().avx512vpopcntdq;
+  }
+  return false;
+}
+}  // namespace
+
+std::string toString(HammingPath path)
+{
+  switch (path)
+  {
+    case HammingPath::Scalar:
+      return "scalar";
+    case HammingPath::Popcnt:
+      return "popcnt";
+    case HammingPath::Avx2:
+      return "avx2";
+    case HammingPath::Avx512:
+      return "avx512-vpopcntdq";
+  }
+  return "?";
+}
+
+std::vector<HammingPath> availableHammingPaths()
+{
+  std::vector<HammingPath> paths;
+  for (HammingPath p : {HammingPath::Scalar, HammingPath::Popcnt, HammingPath::Avx2, HammingPath::Avx512})
+    if (available(p))
+      paths.push_back(p);
+  return paths;
+}
+
+HammingPath bestHammingPath()
+{
+  static const HammingPath best = availableHammingPaths().back();
+  return best;
+}
+
+int hammingDistanceReference(const uint64_t* a, const uint64_t* b, int words)
+{
+  int d = 0;
+  for (int w = 0; w < words; ++w)
+    d += countBits(a[w] ^ b[w]);
+  return d;
+}
+
+void hammingDistances(HammingPath path, const uint64_t* query, const uint64_t* codes, size_t count, int words,
+                      uint16_t* out)
+{
+  if (words != 1 && words != 2 && words != 4 && words != 8)
+    throw std::invalid_argument("hammingDistances: words must be 1, 2, 4 or 8");
+  if (!available(path))
+    throw std::invalid_argument("hammingDistances: this CPU cannot run the " + toString(path) + " path");
+  switch (path)
+  {
+    case HammingPath::Scalar:
+      return scalarDistances(query, codes, count, words, out);
+    case HammingPath::Popcnt:
+      return popcntDistances(query, codes, count, words, out);
+    case HammingPath::Avx2:
+      return avx2Distances(query, codes, count, words, out);
+    case HammingPath::Avx512:
+      return avx512Distances(query, codes, count, words, out);
+  }
+}
+}  // namespace biovision_common

@@ -1,0 +1,52 @@
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <sensor_msgs/Image.h>
+
+namespace biovision_ros_common
+{
+/// Thrown when an image message cannot be converted; the message names the problem (encoding, size,
+/// step, data length) so the nodelet can report it as is.
+struct ImageConversionError : std::invalid_argument
+{
+  using std::invalid_argument::invalid_argument;
+};
+
+/// The one conversion of sensor_msgs/Image to cv::Mat that every BioVision nodelet uses (the grid_map
+/// GridMapRosConverter pattern: static functions, testable without a master).
+///
+/// Encodings read (sensor_msgs/image_encodings names):
+///   grey:   mono8, 8UC1, mono16, 16UC1                        -> 1 channel
+///   colour: bgr8, rgb8, bgra8, rgba8, 8UC3, bgr16, rgb16, bgra16, rgba16 -> 3 channels, BGR order
+///   raw:    bayer_{rggb,bggr,gbrg,grbg}{8,16} (debayered, edge-aware), yuv422 (UYVY) -> 3 channels, BGR
+///   float:  32FC1 (only with Depth::Keep, or through toFloat32)
+/// Anything else throws, listing these. Checks, in order, each throwing ImageConversionError: width or
+/// height 0; more than kMaxPixels pixels; step < width × bytes per pixel; data shorter than step × height.
+/// Rows may be padded (step > width × bytes per pixel): the padding is skipped. Multi-byte pixels with
+/// is_bigendian different from this machine's are byte-swapped. When no conversion is needed the result
+/// shares the message's memory (zero copy): keep the message alive while using it.
+class ImageMessageConverter
+{
+public:
+  static constexpr size_t kMaxPixels = size_t(64) << 20;  ///< 64 Mpx: larger is a damaged header
+
+  enum class Depth
+  {
+    Eight,  ///< 8 bits per channel: 16-bit data scaled by 1/257 (full range to full range)
+    Keep,   ///< the message's depth: CV_8U, CV_16U or CV_32F
+  };
+
+  /// A picture for the vision front ends: BGR (3 channels) or grey (1 channel).
+  static cv::Mat toCv(const sensor_msgs::Image& message, Depth depth = Depth::Eight);
+
+  /// A single-channel measurement image (32FC1, 16UC1/mono16, 8UC1/mono8) as CV_32F of the raw values.
+  static cv::Mat toFloat32(const sensor_msgs::Image& message);
+
+  /// The encodings toCv() reads, for error messages and docs.
+  static const std::vector<std::string>& encodings();
+};
+}  // namespace biovision_ros_common

@@ -1,0 +1,115 @@
+#pragma once
+
+// What the rostest gtests of BioVision nodes share: waiting on a condition in wall time (sim time may be
+// paused), watching a node's diagnostics, and collecting messages.
+
+#include <atomic>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <diagnostic_msgs/DiagnosticArray.h>
+#include <ros/ros.h>
+
+namespace biovision_ros_common
+{
+/// Polls `condition` every 20 ms for up to `seconds` of wall time; true as soon as it holds.
+template <typename Condition>
+bool waitFor(Condition condition, double seconds)
+{
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(seconds);
+  while (ros::ok() && ros::WallTime::now() < end)
+  {
+    if (condition())
+      return true;
+    ros::WallDuration(0.02).sleep();
+  }
+  return condition();
+}
+
+/// Watches /diagnostics for the statuses whose name contains `status_name`: how many arrived and the
+/// highest level seen since the last clear(). Needs a spinner (ros::AsyncSpinner) running.
+class DiagnosticsWatch
+{
+public:
+  DiagnosticsWatch(ros::NodeHandle& nh, const std::string& status_name) : name_(status_name)
+  {
+    sub_ = nh.subscribe("/diagnostics", 50, &DiagnosticsWatch::onDiagnostics, this);
+  }
+  unsigned received() const { return received_; }
+  bool sawError() const { return max_level_ >= diagnostic_msgs::DiagnosticStatus::ERROR; }
+  std::string lastMessage() const
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return last_message_;
+  }
+  void clear()
+  {
+    received_ = 0;
+    max_level_ = 0;
+  }
+
+private:
+  void onDiagnostics(const diagnostic_msgs::DiagnosticArrayConstPtr& msg)
+  {
+    for (const auto& s : msg->status)
+      if (s.name.find(name_) != std::string::npos)
+      {
+        ++received_;
+        if (s.level > max_level_)
+          max_level_ = s.level;
+        std::lock_guard<std::mutex> lock(mutex_);
+        last_message_ = s.message;
+      }
+  }
+
+  std::string name_;
+  ros::Subscriber sub_;
+  std::atomic<unsigned> received_{0};
+  std::atomic<int> max_level_{0};
+  mutable std::mutex mutex_;
+  std::string last_message_;
+};
+
+/// Keeps every message of one topic (bounded by `capacity`, oldest dropped).
+template <typename Message>
+class TopicProbe
+{
+public:
+  TopicProbe(ros::NodeHandle& nh, const std::string& topic, size_t capacity = 1000) : capacity_(capacity)
+  {
+    sub_ = nh.subscribe<Message>(topic, 20, [this](const typename Message::ConstPtr& m) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (messages_.size() == capacity_)
+        messages_.erase(messages_.begin());
+      messages_.push_back(m);
+      ++count_;
+    });
+  }
+  /// Messages received since start (not bounded by capacity).
+  size_t count() const { return count_; }
+  std::vector<typename Message::ConstPtr> messages() const
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return messages_;
+  }
+  typename Message::ConstPtr last() const
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return messages_.empty() ? nullptr : messages_.back();
+  }
+  /// Waits until `n` messages have arrived since start.
+  bool waitForCount(size_t n, double seconds)
+  {
+    return waitFor([&] { return count_ >= n; }, seconds);
+  }
+  const ros::Subscriber& subscriber() const { return sub_; }
+
+private:
+  size_t capacity_;
+  ros::Subscriber sub_;
+  mutable std::mutex mutex_;
+  std::vector<typename Message::ConstPtr> messages_;
+  std::atomic<size_t> count_{0};
+};
+}  // namespace biovision_ros_common

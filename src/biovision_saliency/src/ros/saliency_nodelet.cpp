@@ -11,6 +11,7 @@
 #include <sensor_msgs/image_encodings.h>
 
 #include "biovision_ros_common/image_message_converter.hpp"
+#include "biovision_saliency/ros/saliency_config.hpp"
 
 namespace biovision_saliency
 {
@@ -66,26 +67,7 @@ void SaliencyNodelet::unsubscribe()
 
 void SaliencyNodelet::reconfigure(SaliencyConfig& c, uint32_t /*level*/)
 {
-  SaliencyParameters p;
-  p.working_width = c.working_width;
-  p.colour_weight = c.colour_weight;
-  p.disparity_weight = c.disparity_weight;
-  p.motion_weight = c.motion_weight;
-  p.final_blur = c.final_blur;
-  p.preferred_disparity_mode = c.preferred_disparity_mode;
-  p.near_fraction = c.near_fraction;
-  p.preferred_disparity = c.preferred_disparity;
-  p.preferred_width = c.preferred_width;
-  p.use_dis_flow = c.use_dis_flow;
-  p.compensate_ego_motion = c.compensate_ego_motion;
-  p.threshold = c.threshold;
-  p.min_saliency = c.min_saliency;
-  p.min_area = c.min_area;
-  p.margin = c.margin;
-  p.max_regions = c.max_regions;
-  p.ior_radius = c.ior_radius;
-  p.ior_decay_time = c.ior_decay_time;
-  p.attend_period = c.attend_period;
+  const SaliencyParameters p = toSaliencyParameters(c);
   try
   {
     auto pipeline = std::make_unique<SaliencyPipeline>(p);

@@ -13,6 +13,7 @@
 #include <stereo_msgs/DisparityImage.h>
 
 #include "biovision_ros_common/image_message_converter.hpp"
+#include "biovision_stereo/ros/bio_bin_config.hpp"
 #include "biovision_v1/wavelength_list.hpp"
 
 namespace biovision_stereo
@@ -117,23 +118,7 @@ void BioBinDisparityNodelet::reconfigure(BioBinDisparityConfig& config, uint32_t
 {
   try
   {
-    BioBinParameters p;
-    p.wavelengths = biovision_v1::parseWavelengthList(config.wavelengths);
-    p.max_disparity = config.max_disparity;
-    p.kappa = config.kappa;
-    p.tau = config.tau;
-    p.alpha = config.alpha;
-    p.beta = config.beta;
-    p.sigma1 = config.sigma1;
-    p.sigma2 = config.sigma2;
-    p.fusion_level = config.fusion_level;
-    p.relaxation = config.relaxation;
-    p.stable_cost = config.stable_cost;
-    p.max_iterations = config.max_iterations;
-    p.line_edge_barriers = config.line_edge_barriers;
-    p.subpixel = config.subpixel;
-    p.left_right_check = config.left_right_check;
-    p.left_right_tolerance = config.left_right_tolerance;
+    const BioBinParameters p = toBioBinParameters(config);
     auto matcher = std::make_unique<BioBinMatcher>(p);
     std::lock_guard<std::mutex> lock(matcher_mutex_);
     matcher_ = std::move(matcher);

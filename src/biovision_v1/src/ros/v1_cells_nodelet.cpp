@@ -10,6 +10,7 @@
 #include <sensor_msgs/image_encodings.h>
 
 #include "biovision_ros_common/image_message_converter.hpp"
+#include "biovision_v1/ros/v1_cells_config.hpp"
 #include "biovision_v1/input_image.hpp"
 #include "biovision_v1/wavelength_list.hpp"
 
@@ -53,25 +54,9 @@ void V1CellsNodelet::unsubscribe()
 
 void V1CellsNodelet::reconfigure(V1CellsConfig& config, uint32_t /*level*/)
 {
-  V1Pipeline::Parameters p;
   try
   {
-    p.gabor.wavelengths = parseWavelengthList(config.wavelengths);
-    p.gabor.orientations = config.orientations;
-    p.gabor.sigma_per_wavelength = config.sigma_per_wavelength;
-    p.gabor.aspect_ratio = config.aspect_ratio;
-    p.gabor.min_grid_wavelength = config.min_grid_wavelength;
-    p.keypoints.threshold = config.keypoint_threshold;
-    p.keypoints.min_contrast = config.min_contrast;
-    p.keypoints.inhibition_gain = config.inhibition_gain;
-    p.keypoints.radial_factor = config.radial_factor;
-    p.keypoints.junction_weight = config.junction_weight;
-    p.keypoints.junction_balance = config.junction_balance;
-    p.keypoints.max_keypoints = config.max_keypoints;
-    p.line_edges.relative_threshold = config.line_edge_threshold;
-    p.line_edges.min_contrast = config.min_contrast;
-    p.line_edges.lateral_inhibition = config.lateral_inhibition;
-    p.end_stop_offset = config.end_stop_offset;
+    const V1Pipeline::Parameters p = toV1Parameters(config);
     auto pipeline = std::make_unique<V1Pipeline>(p);
     std::lock_guard<std::mutex> lock(pipeline_mutex_);
     pipeline_ = std::move(pipeline);

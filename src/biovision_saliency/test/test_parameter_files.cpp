@@ -10,22 +10,11 @@
 
 using namespace biovision_saliency;
 
-namespace
-{
-std::string join(const std::vector<std::string>& lines)
-{
-  std::string s;
-  for (const auto& l : lines)
-    s += l + "\n";
-  return s;
-}
-}  // namespace
-
 TEST(ParameterFiles, YamlDefaultsEqualTheCfgDefaults)
 {
   const auto problems =
       biovision_ros_common::yamlDefaultMismatches<SaliencyConfig>(BIOVISION_CONFIG_DIR "/saliency.yaml");
-  EXPECT_TRUE(problems.empty()) << join(problems);
+  EXPECT_TRUE(problems.empty()) << biovision_ros_common::joinLines(problems);
 }
 
 TEST(ParameterFiles, CfgDefaultsEqualTheCoreDefaults)

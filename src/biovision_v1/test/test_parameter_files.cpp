@@ -7,22 +7,11 @@
 
 using namespace biovision_v1;
 
-namespace
-{
-std::string join(const std::vector<std::string>& lines)
-{
-  std::string s;
-  for (const auto& l : lines)
-    s += l + "\n";
-  return s;
-}
-}  // namespace
-
 TEST(ParameterFiles, YamlDefaultsEqualTheCfgDefaults)
 {
   const auto problems =
       biovision_ros_common::yamlDefaultMismatches<V1CellsConfig>(BIOVISION_CONFIG_DIR "/v1_cells.yaml");
-  EXPECT_TRUE(problems.empty()) << join(problems);
+  EXPECT_TRUE(problems.empty()) << biovision_ros_common::joinLines(problems);
 }
 
 TEST(ParameterFiles, CfgDefaultsEqualTheCoreDefaults)

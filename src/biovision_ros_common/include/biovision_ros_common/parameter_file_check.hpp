@@ -16,6 +16,15 @@
 
 namespace biovision_ros_common
 {
+/// The problems, one a line, for a test's failure message.
+inline std::string joinLines(const std::vector<std::string>& lines)
+{
+  std::string s;
+  for (const auto& l : lines)
+    s += l + "\n";
+  return s;
+}
+
 /// The .cfg defaults of `Config` (a dynamic_reconfigure generated class) as a message.
 template <typename Config>
 dynamic_reconfigure::Config configDefaults()

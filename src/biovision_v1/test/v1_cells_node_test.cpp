@@ -1,16 +1,20 @@
 // Integration test of the v1_cells node: lazy subscription, keypoints of a known image, survival of
-// bad input with an ERROR diagnostic, and recovery afterwards.
-#include <atomic>
+// bad input with an ERROR diagnostic, and recovery afterwards; raw Bayer frames are read.
 #include <cmath>
-#include <mutex>
+#include <memory>
 
 #include <biovision_msgs/KeypointArray.h>
 #include <cv_bridge/cv_bridge.h>
-#include <diagnostic_msgs/DiagnosticArray.h>
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 #include <ros/ros.h>
 #include <sensor_msgs/Image.h>
+
+#include "biovision_ros_common/rostest_helpers.hpp"
+
+using biovision_ros_common::DiagnosticsWatch;
+using biovision_ros_common::TopicProbe;
+using biovision_ros_common::waitFor;
 
 namespace
 {
@@ -22,34 +26,7 @@ public:
     image_pub_ = nh_.advertise<sensor_msgs::Image>("camera/image", 5);
   }
 
-  void onKeypoints(const biovision_msgs::KeypointArrayConstPtr& msg)
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    last_ = msg;
-    ++received_;
-  }
-
-  void onDiagnostics(const diagnostic_msgs::DiagnosticArrayConstPtr& msg)
-  {
-    for (const auto& s : msg->status)
-      if (s.name.find("V1 cells") != std::string::npos && s.level == diagnostic_msgs::DiagnosticStatus::ERROR)
-        saw_error_ = true;
-  }
-
 protected:
-  template <typename Pred>
-  bool waitFor(Pred pred, double seconds)
-  {
-    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(seconds);
-    while (ros::ok() && ros::WallTime::now() < end)
-    {
-      if (pred())
-        return true;
-      ros::WallDuration(0.02).sleep();
-    }
-    return pred();
-  }
-
   // L-corner of a bright square on grey, 160x120, corner at (79.5, 59.5).
   static sensor_msgs::ImagePtr cornerImage(uint32_t seq)
   {
@@ -63,25 +40,28 @@ protected:
   }
 
   // Publishes the corner image until a keypoint array for it arrives.
-  biovision_msgs::KeypointArrayConstPtr keypointsForCorner()
+  biovision_msgs::KeypointArrayConstPtr keypointsForCorner(TopicProbe<biovision_msgs::KeypointArray>& keypoints)
   {
-    const int before = received_;
+    const size_t before = keypoints.count();
     uint32_t seq = 0;
     waitFor([&] {
       image_pub_.publish(cornerImage(++seq));
       ros::WallDuration(0.1).sleep();
-      return received_ > before;
+      return keypoints.count() > before;
     }, 30.0);
-    std::lock_guard<std::mutex> lock(mutex_);
-    return received_ > before ? last_ : nullptr;
+    return keypoints.count() > before ? keypoints.last() : nullptr;
+  }
+
+  static double distanceToCorner(const biovision_msgs::KeypointArray& kps)
+  {
+    double best = 1e9;
+    for (const auto& k : kps.keypoints)
+      best = std::min(best, std::hypot(k.x - 79.5, k.y - 59.5));
+    return best;
   }
 
   ros::NodeHandle nh_;
   ros::Publisher image_pub_;
-  std::mutex mutex_;
-  biovision_msgs::KeypointArrayConstPtr last_;
-  std::atomic<int> received_{0};
-  std::atomic<bool> saw_error_{false};
 };
 
 TEST_F(V1CellsNodeTest, LazySubscriptionKeypointsBadInputAndRecovery)
@@ -90,25 +70,22 @@ TEST_F(V1CellsNodeTest, LazySubscriptionKeypointsBadInputAndRecovery)
   ros::WallDuration(1.0).sleep();
   EXPECT_EQ(image_pub_.getNumSubscribers(), 0u) << "v1_cells subscribed without listeners";
 
-  ros::Subscriber kp_sub = nh_.subscribe("keypoints", 5, &V1CellsNodeTest::onKeypoints, static_cast<V1CellsNodeTest*>(this));
-  ros::Subscriber diag_sub = nh_.subscribe("/diagnostics", 20, &V1CellsNodeTest::onDiagnostics, static_cast<V1CellsNodeTest*>(this));
+  auto keypoints = std::make_unique<TopicProbe<biovision_msgs::KeypointArray>>(nh_, "keypoints");
+  DiagnosticsWatch diagnostics(nh_, "V1 cells");
   ASSERT_TRUE(waitFor([&] { return image_pub_.getNumSubscribers() > 0; }, 20.0)) << "v1_cells never subscribed";
 
-  auto kps = keypointsForCorner();
+  auto kps = keypointsForCorner(*keypoints);
   ASSERT_TRUE(kps) << "no keypoints message";
   EXPECT_EQ(kps->header.frame_id, "stereo_left_optical");
   EXPECT_EQ(kps->image_width, 160u);
   EXPECT_EQ(kps->image_height, 120u);
-  double best = 1e9;
-  for (const auto& k : kps->keypoints)
-    best = std::min(best, std::hypot(k.x - 79.5, k.y - 59.5));
-  EXPECT_LE(best, 2.0) << kps->keypoints.size() << " keypoints, none at the corner";
+  EXPECT_LE(distanceToCorner(*kps), 2.0) << kps->keypoints.size() << " keypoints, none at the corner";
 
-  // Bad input: a 4x4 image, a Bayer image, an image whose data is shorter than its header says.
+  // Bad input: a 4x4 image (below the model's smallest side), an image whose data is shorter than its
+  // header says, an unknown encoding.
   std_msgs::Header h;
   h.stamp = ros::Time::now();
   image_pub_.publish(cv_bridge::CvImage(h, "mono8", cv::Mat(4, 4, CV_8U, cv::Scalar(9))).toImageMsg());
-  image_pub_.publish(cv_bridge::CvImage(h, "bayer_rggb8", cv::Mat(64, 64, CV_8U, cv::Scalar(9))).toImageMsg());
   sensor_msgs::Image truncated;
   truncated.header = h;
   truncated.width = 64;
@@ -117,18 +94,25 @@ TEST_F(V1CellsNodeTest, LazySubscriptionKeypointsBadInputAndRecovery)
   truncated.step = 64;
   truncated.data.resize(100);
   image_pub_.publish(truncated);
-  EXPECT_TRUE(waitFor([&] { return saw_error_.load(); }, 15.0)) << "no ERROR diagnostic after bad input";
+  truncated.encoding = "jpeg";
+  truncated.data.resize(64 * 64);
+  image_pub_.publish(truncated);
+  EXPECT_TRUE(waitFor([&] { return diagnostics.sawError(); }, 15.0)) << "no ERROR diagnostic after bad input";
 
   // Still alive and correct.
-  kps = keypointsForCorner();
+  kps = keypointsForCorner(*keypoints);
   ASSERT_TRUE(kps) << "v1_cells stopped publishing after bad input";
-  best = 1e9;
-  for (const auto& k : kps->keypoints)
-    best = std::min(best, std::hypot(k.x - 79.5, k.y - 59.5));
-  EXPECT_LE(best, 2.0);
+  EXPECT_LE(distanceToCorner(*kps), 2.0);
+
+  // A raw Bayer frame is demosaiced by the shared conversion, not refused.
+  const size_t before = keypoints->count();
+  cv::Mat raw(120, 160, CV_8U, cv::Scalar(50));
+  raw(cv::Rect(80, 60, 80, 60)).setTo(200);
+  image_pub_.publish(cv_bridge::CvImage(h, "bayer_rggb8", raw).toImageMsg());
+  EXPECT_TRUE(keypoints->waitForCount(before + 1, 10.0)) << "no keypoints for a bayer_rggb8 frame";
 
   // Unsubscribing makes it drop the image subscription again.
-  kp_sub.shutdown();
+  keypoints.reset();
   EXPECT_TRUE(waitFor([&] { return image_pub_.getNumSubscribers() == 0; }, 20.0));
 }
 }  // namespace

@@ -7,7 +7,29 @@
 
 namespace biovision_common
 {
-ToolOptions::ToolOptions(const std::string& tool, const std::string& description) : app_(description, tool) {}
+namespace
+{
+/// A validator of numbers for which `accept` holds; `requirement` completes "<value> is not ...".
+CLI::Validator numberWhere(bool (*accept)(double), const std::string& requirement, const std::string& name)
+{
+  return CLI::Validator(
+      [accept, requirement](std::string& value) {
+        double number = 0.0;
+        if (!CLI::detail::lexical_cast(value, number))
+          return std::string();  // not a number: the option's type check names the problem
+        return accept(number) ? std::string() : value + " is not " + requirement;
+      },
+      name);
+}
+}  // namespace
+
+const CLI::Validator kPositive = numberWhere([](double x) { return x > 0.0; }, "> 0", "POSITIVE");
+const CLI::Validator kNonNegative = numberWhere([](double x) { return x >= 0.0; }, ">= 0", "NONNEGATIVE");
+
+ToolOptions::ToolOptions(const std::string& tool, const std::string& description) : app_(description, tool)
+{
+  app_.option_defaults()->always_capture_default();  // --help prints "--threads INT=2"
+}
 
 void ToolOptions::parse(int argc, char** argv)
 {
@@ -26,6 +48,11 @@ void ToolOptions::parse(int argc, char** argv)
 }
 
 void writeJsonFile(const std::string& path, const nlohmann::json& document)
+{
+  writeFileAtomically(path, document.dump(2) + "\n");
+}
+
+void writeJsonFile(const std::string& path, const nlohmann::ordered_json& document)
 {
   writeFileAtomically(path, document.dump(2) + "\n");
 }

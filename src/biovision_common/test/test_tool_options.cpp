@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iterator>
 #include <vector>
 
 #include "biovision_common/tool_options.hpp"
@@ -23,7 +24,7 @@ Parsed parse(std::vector<std::string> args, ToolOptions* keep = nullptr)
   Parsed p;
   ToolOptions local("tool", "test tool");
   ToolOptions& options = keep ? *keep : local;
-  options.app().add_option("--threads", p.threads, "threads")->check(CLI::PositiveNumber);
+  options.app().add_option("--threads", p.threads, "threads")->check(kPositive);
   options.app().add_option("--scale", p.scale, "scale");
   options.app().add_option("--levels", p.levels, "levels")->delimiter(',');
   options.app().add_flag("--shaped", p.shaped, "flag");
@@ -59,7 +60,7 @@ TEST(ToolOptions, DefaultsStayWhenOptionsAreAbsent)
 TEST(ToolOptions, IllTypedUnknownOrMissingValuesExitWithStatus2)
 {
   EXPECT_EXIT(parse({"--threads", "x"}), testing::ExitedWithCode(2), "threads");
-  EXPECT_EXIT(parse({"--threads", "0"}), testing::ExitedWithCode(2), "threads");
+  EXPECT_EXIT(parse({"--threads", "0"}), testing::ExitedWithCode(2), "--threads: 0 is not > 0");
   EXPECT_EXIT(parse({"--scale", "1.5abc"}), testing::ExitedWithCode(2), "scale");
   EXPECT_EXIT(parse({"--levels", "1,b"}), testing::ExitedWithCode(2), "levels");
   EXPECT_EXIT(parse({"--no-such-option"}), testing::ExitedWithCode(2), "no-such-option");
@@ -69,6 +70,16 @@ TEST(ToolOptions, IllTypedUnknownOrMissingValuesExitWithStatus2)
 TEST(ToolOptions, HelpExitsWithStatus0)
 {
   EXPECT_EXIT(parse({"--help"}), testing::ExitedWithCode(0), "");
+}
+
+// Usage texts do not repeat the defaults: --help reads them from the variables.
+TEST(ToolOptions, HelpShowsTheDefaults)
+{
+  ToolOptions options("tool", "test tool");
+  parse({}, &options);
+  const std::string help = options.app().help();
+  EXPECT_NE(help.find("=2"), std::string::npos) << help;
+  EXPECT_NE(help.find("[0,1]"), std::string::npos) << help;
 }
 
 TEST(ToolOptions, JsonIsWrittenWholeAndReadsBack)
@@ -81,4 +92,20 @@ TEST(ToolOptions, JsonIsWrittenWholeAndReadsBack)
   std::ifstream in(path);
   const nlohmann::json back = nlohmann::json::parse(in);
   EXPECT_EQ(back, doc);
+}
+
+// bench_report.py shows the figures in the order of the file: ordered_json keeps the tool's order.
+TEST(ToolOptions, OrderedJsonKeepsTheKeysInTheOrderTheyWereAdded)
+{
+  const std::string path = testing::TempDir() + "/biovision_common_tool_ordered.json";
+  nlohmann::ordered_json doc;
+  doc["zeta"] = 1;
+  doc["alpha"] = {{"second", 2.5}, {"first", 0.1}};
+  writeJsonFile(path, doc);
+  std::ifstream in(path);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_LT(text.find("zeta"), text.find("alpha"));
+  EXPECT_LT(text.find("second"), text.find("first"));
+  EXPECT_EQ(text.find("0.10000"), std::string::npos);  // shortest round-trip form, not 0.10000000000000001
+  EXPECT_EQ(nlohmann::ordered_json::parse(text), doc);
 }

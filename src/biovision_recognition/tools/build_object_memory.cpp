@@ -12,21 +12,13 @@
 
 #include "biovision_recognition/object_recognizer.hpp"
 #include "biovision_v1/input_image.hpp"
-#include "biovision_common/tool_arguments.hpp"
+#include "biovision_common/tool_options.hpp"
 
 using namespace biovision_recognition;
 using biovision_common::listDirectory;
-using biovision_common::ToolArguments;
 
 namespace
 {
-const char* kUsage =
-    "usage: build_object_memory --templates DIR --out FILE [--model FILE] [--template-step DEG]\n"
-    "  --templates DIR      a folder per object (label = folder name; every image is a view), or\n"
-    "                       files LABEL__ANGLE.png (COIL naming): views at multiples of --template-step (default 20)\n"
-    "  --model FILE         descriptor model (default: the package's models/v1_ldahash_128.bin)\n"
-    "  --out FILE           the object memory, written atomically (load it with the node's ~memory_file)\n";
-
 bool isDirectory(const std::string& path)
 {
   struct stat s;
@@ -36,20 +28,28 @@ bool isDirectory(const std::string& path)
 
 int main(int argc, char** argv)
 {
-  const ToolArguments args(argc, argv, kUsage, {"--templates", "--out", "--model", "--template-step"});
-  if (!args.has("--templates") || !args.has("--out"))
-  {
-    std::cerr << kUsage;
-    return 2;
-  }
+  std::string root, out, model = ros::package::getPath("biovision_recognition") + "/models/v1_ldahash_128.bin";
+  int step = 20;
+  biovision_common::ToolOptions options(
+      "build_object_memory",
+      "Builds an object memory file from template images: a folder per object (every image in it is a view), or\n"
+      "COIL-style files LABEL__ANGLE.png (views at multiples of --template-step).");
+  CLI::App& app = options.app();
+  app.add_option("--templates", root,
+                 "a folder per object (label = folder name; every image is a view), or files LABEL__ANGLE.png")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  app.add_option("--out", out, "the object memory, written atomically (load it with the node's ~memory_file)")
+      ->required();
+  app.add_option("--model", model, "descriptor model");
+  app.add_option("--template-step", step, "COIL naming: views at multiples of this [deg]")
+      ->check(biovision_common::kPositive);
+  options.parse(argc, argv);
   try
   {
-    const std::string model = args.get("--model", ros::package::getPath("biovision_recognition") + "/models/v1_ldahash_128.bin");
     auto descriptor = std::make_shared<const V1Descriptor>(DescriptorModel::load(model));
     ObjectRecognizer recognizer(descriptor, ObjectRecognizer::Parameters());
     ObjectMemory memory(descriptor->model().bits(), descriptor->model().id());
-    const std::string root = args.get("--templates");
-    const int step = static_cast<int>(args.number("--template-step", 20));
     const std::regex coil(R"((.+)__(\d+)\.(png|jpg|ppm))");
     auto add = [&](const std::string& path, const std::string& label) {
       const cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
@@ -76,8 +76,8 @@ int main(int argc, char** argv)
     }
     if (memory.views().empty())
       throw std::runtime_error("no template views found in " + root);
-    memory.save(args.get("--out"));
-    std::cerr << "wrote " << args.get("--out") << ": " << memory.labels().size() << " objects, " << memory.views().size()
+    memory.save(out);
+    std::cerr << "wrote " << out << ": " << memory.labels().size() << " objects, " << memory.views().size()
               << " views, " << memory.codeCount() << " codes (descriptor " << memory.descriptorId() << ")\n";
   }
   catch (const std::exception& e)

@@ -3,10 +3,13 @@
 
 #include <algorithm>
 #include <chrono>
-#include <fstream>
+#include <cstring>
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <memory>
+#include <string>
+#include <vector>
 
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
@@ -15,32 +18,74 @@
 #include "biovision_recognition/v1_descriptor.hpp"
 #include "correspondence_data.hpp"
 #include "biovision_common/eval/roc_metrics.hpp"
-#include "biovision_common/tool_arguments.hpp"
+#include "biovision_common/tool_options.hpp"
 
 using biovision_common::fpr95AtThreshold;
 using biovision_common::fpr95;
 using biovision_common::rocArea;
 
 using namespace biovision_recognition;
-using biovision_common::ToolArguments;
 
 namespace
 {
-const char* kUsage =
-    "usage: descriptor_eval --models LIST [--stereo DIR] [--sequence DIR] [options]\n"
-    "  --models LIST      trained descriptor models (comma-separated); each is a method named by its file stem\n"
-    "  --stereo DIR       folder of Middlebury scenes;   --part P: test (default), train or all\n"
-    "  --sequence DIR     HPatches (1.ppm, H_1_k) or Oxford (img1.png, H1to2p) sequence\n"
-    "  --targets LIST     sequence images paired with image 1 (default 4,5,6: 2,3 are the training part)\n"
-    "  --levels LIST      keypoint pyramid levels (default 0,1,2,3,4)\n"
-    "  --pairs N          pairs of each kind per image pair (default 2000: 500 left the pooled fpr95 to a few\n"
-    "                     hundred pairs of the hardest viewpoint change, and it moved by 0.03 between models)\n"
-    "  --peers LIST       OpenCV peers (default orb,brisk,akaze,sift)\n"
-    "  --shaped-peers LIST  peers also run on patches normalised by our affine shape adaptation (method\n"
-    "                     name + \"+shape\"): is the gain the adaptation's or the descriptor's? (default none)\n"
-    "  --json FILE        results\n"
-    "Every method describes the same keypoints, upright, with the same support (the first model's patch,\n"
-    "8 keypoint wavelengths for the committed ones).\n";
+/// The OpenCV descriptors createPeer() makes; all of them run unless --peers says otherwise.
+const std::vector<std::string> kPeers{"orb", "brisk", "akaze", "sift"};
+
+struct Options
+{
+  std::vector<std::string> models;  // each is a method named by its file stem
+  std::string stereo, sequence, json_path, part = "test";
+  std::vector<int> targets{4, 5, 6};  // 2, 3 are the training part
+  PairSampler::Parameters sampling;   // --levels, --pairs
+  std::vector<std::string> peers = kPeers;
+  std::vector<std::string> shaped_peers;  // default: none
+  std::string command;  // the options as given, for the results
+};
+
+Options parseOptions(int argc, char** argv)
+{
+  Options o;
+  // 500 left the pooled fpr95 to a few hundred pairs of the hardest viewpoint change, and it moved by 0.03
+  // between models.
+  o.sampling.max_pairs = 2000;
+  biovision_common::ToolOptions options(
+      "descriptor_eval",
+      "Matching performance of the V1 descriptor against OpenCV's ORB, BRISK, AKAZE and SIFT on the same V1 keypoints\n"
+      "of real image pairs with exact correspondence (test part: disjoint from training). Every method describes the\n"
+      "same keypoints, upright, with the same support (the first model's patch, 8 keypoint wavelengths for the\n"
+      "committed ones). Prints a table; --json writes the results.");
+  CLI::App& app = options.app();
+  app.add_option("--models", o.models, "trained descriptor models, comma-separated")
+      ->required()
+      ->delimiter(',')
+      ->check(CLI::ExistingFile);
+  app.add_option("--stereo", o.stereo, "folder of Middlebury scenes");
+  app.add_option("--part", o.part, "part of the stereo scenes (they alternate train/test in name order)")
+      ->check(CLI::IsMember({"test", "train", "all"}));
+  app.add_option("--sequence", o.sequence, "HPatches (1.ppm, H_1_k) or Oxford (img1.png, H1to2p) sequence");
+  app.add_option("--targets", o.targets, "sequence images paired with image 1")
+      ->delimiter(',')
+      ->check(biovision_common::kPositive);
+  app.add_option("--levels", o.sampling.levels, "keypoint pyramid levels")
+      ->delimiter(',')
+      ->check(biovision_common::kNonNegative);
+  app.add_option("--pairs", o.sampling.max_pairs, "pairs of each kind per image pair")
+      ->check(biovision_common::kPositive);
+  app.add_option("--peers", o.peers, "OpenCV peers, comma-separated")->delimiter(',')->check(CLI::IsMember(kPeers));
+  app.add_option("--shaped-peers", o.shaped_peers,
+                 "peers also run on patches normalised by our affine shape adaptation (method name + \"+shape\"): is "
+                 "the gain the adaptation's or the descriptor's? (default: none)")
+      ->delimiter(',')
+      ->check(CLI::IsMember(kPeers));
+  app.add_option("--json", o.json_path, "write the results to this file");
+  app.callback([&] {
+    if (o.stereo.empty() && o.sequence.empty())
+      throw CLI::RequiredError("--stereo or --sequence");
+  });
+  options.parse(argc, argv);
+  o.command = options.command();
+  return o;
+}
 
 struct Scores
 {
@@ -169,155 +214,161 @@ float distance(const Described& a, int ia, const Described& b, int ib)
   return static_cast<float>(cv::norm(ra, rb, ra.type() == CV_8U ? cv::NORM_HAMMING : cv::NORM_L2));
 }
 
+using Models = std::vector<std::pair<std::string, std::unique_ptr<V1Descriptor>>>;  // (file stem, descriptor)
+
+Models loadModels(const std::vector<std::string>& paths)
+{
+  Models ours;
+  for (const auto& path : paths)
+  {
+    std::string stem = path.substr(path.find_last_of('/') + 1);
+    stem = stem.substr(0, stem.find('.'));
+    ours.emplace_back(stem, std::make_unique<V1Descriptor>(DescriptorModel::load(path)));
+  }
+  return ours;
+}
+
+struct Evaluation
+{
+  std::map<std::string, Scores> scores;                               // method -> every pair's distances
+  std::map<std::string, std::map<std::string, double>> per_pair_fpr;  // image pair -> method -> fpr95
+};
+
+/// Every method on the same sampled keypoints of every image pair; only pairs every method described count.
+Evaluation evaluate(const Options& o, const Models& ours)
+{
+  PairSampler sampler(o.sampling);
+  const auto pairs = loadCorrespondencePairs(o.stereo, o.part, o.sequence, o.targets);
+  Evaluation evaluation;
+  auto& scores = evaluation.scores;
+  auto& per_pair_fpr = evaluation.per_pair_fpr;
+  // Peers get the first model's support (patch side in keypoint wavelengths).
+  const float support = static_cast<float>(ours.front().second->model().layout.patch_wavelengths);
+  V1FeaturePyramid::Parameters pyramid_parameters = ours.front().second->pyramidParameters();
+  for (const auto& [stem, descriptor] : ours)
+    pyramid_parameters.pooling_phases = std::max(pyramid_parameters.pooling_phases, descriptor->model().layout.phases);
+  V1FeaturePyramid pa(pyramid_parameters), pb(pyramid_parameters);
+  for (const auto& pair : pairs)
+  {
+    const cv::Mat ga = biovision_v1::InputImage(pair.a).gray(), gb = biovision_v1::InputImage(pair.b).gray();
+    pa.build(ga);
+    pb.build(gb);
+    const auto p = samplePairs(sampler, pair, pa, pb);
+    const size_t n = p.positive_a.size();
+    // Image B's keypoints: positives then negatives.
+    std::vector<biovision_v1::Keypoint> kb = p.positive_b;
+    kb.insert(kb.end(), p.negative_b.begin(), p.negative_b.end());
+
+    std::map<std::string, std::pair<Described, Described>> described;
+    std::map<std::string, double> seconds;
+    for (const auto& [name, descriptor] : ours)
+    {
+      auto run = [&](const cv::Mat& gray, V1FeaturePyramid& pyr, const std::vector<biovision_v1::Keypoint>& kps) {
+        const auto t0 = std::chrono::steady_clock::now();
+        pyr.build(gray);  // timed: building the cells is part of describing
+        const BinaryCodeSet codes = descriptor->compute(pyr, kps);
+        seconds[name] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        Described d;
+        d.descriptors = cv::Mat(static_cast<int>(codes.size()), codes.words() * 8, CV_8U);
+        std::memcpy(d.descriptors.data, codes.data(), codes.size() * codes.words() * 8);
+        d.row.resize(kps.size());
+        for (size_t i = 0; i < kps.size(); ++i)
+          d.row[i] = static_cast<int>(i);
+        return d;
+      };
+      described[name] = {run(ga, pa, p.positive_a), run(gb, pb, kb)};
+    }
+    for (const auto& m : o.peers)
+      described[m] = {describePeer(m, pair.a, p.positive_a, support, seconds[m]),
+                      describePeer(m, pair.b, kb, support, seconds[m])};
+    if (!o.shaped_peers.empty())
+    {
+      const AffineShapeAdaptation adaptation(ours.front().second->model().layout.shape);
+      auto shapesOf = [&](const V1FeaturePyramid& pyr, const std::vector<biovision_v1::Keypoint>& kps) {
+        std::vector<cv::Matx22f> shapes;
+        for (const auto& k : kps)
+          shapes.push_back(adaptation.estimate(pyr, k));
+        return shapes;
+      };
+      const auto shapes_a = shapesOf(pa, p.positive_a), shapes_b = shapesOf(pb, kb);
+      for (const auto& m : o.shaped_peers)
+        described[m + "+shape"] = {describeShapedPeer(m, pair.a, p.positive_a, shapes_a, support, seconds[m + "+shape"]),
+                                   describeShapedPeer(m, pair.b, kb, shapes_b, support, seconds[m + "+shape"])};
+    }
+    // Only pairs every method described.
+    std::vector<size_t> kept;
+    for (size_t i = 0; i < n; ++i)
+    {
+      bool all = true;
+      for (const auto& [m, d] : described)
+        all = all && d.first.row[i] >= 0 && d.second.row[i] >= 0 && d.second.row[n + i] >= 0;
+      if (all)
+        kept.push_back(i);
+    }
+    for (auto& [m, d] : described)
+    {
+      Scores& s = scores[m];
+      s.seconds += seconds[m];
+      s.keypoints += n + kb.size();
+      s.binary = d.first.descriptors.type() == CV_8U;
+      Scores local;
+      for (size_t i : kept)
+      {
+        local.positive.push_back(distance(d.first, static_cast<int>(i), d.second, static_cast<int>(i)));
+        local.negative.push_back(distance(d.first, static_cast<int>(i), d.second, static_cast<int>(n + i)));
+      }
+      per_pair_fpr[pair.name][m] = fpr95(local.positive, local.negative);
+      s.positive.insert(s.positive.end(), local.positive.begin(), local.positive.end());
+      s.negative.insert(s.negative.end(), local.negative.begin(), local.negative.end());
+    }
+    std::cerr << pair.name << ": " << kept.size() << " of " << n << " pairs described by every method\n";
+  }
+  return evaluation;
+}
+
+/// Prints the table of methods and returns the results document.
+nlohmann::ordered_json report(const Options& o, const Evaluation& evaluation)
+{
+  nlohmann::ordered_json results;
+  results["command"] = "rosrun biovision_recognition descriptor_eval " + o.command;
+  std::cout << std::left << std::setw(22) << "method" << std::setw(10) << "fpr95" << std::setw(12) << "fpr95_at_t" << std::setw(10) << "roc_auc"
+            << std::setw(14) << "us/keypoint" << "pairs\n";
+  for (const auto& [m, s] : evaluation.scores)
+  {
+    const double f = fpr95(s.positive, s.negative), auc = rocArea(s.positive, s.negative);
+    const double f_at_t = fpr95AtThreshold(s.positive, s.negative);
+    const double us = 1e6 * s.seconds / std::max<size_t>(1, s.keypoints);
+    std::cout << std::setw(22) << m << std::setw(10) << f << std::setw(12) << f_at_t << std::setw(10) << auc << std::setw(14) << us
+              << s.positive.size() << "\n";
+    results[m] = {{"fpr95", f},
+                  {"fpr95_at_threshold", f_at_t},
+                  {"roc_auc", auc},
+                  {"us_per_keypoint", us},
+                  {"pairs", s.positive.size()},
+                  {"binary", s.binary}};
+  }
+  std::string notes =
+      "fpr95 = false-positive rate at exactly 95% recall (ties at the threshold distance shared in proportion, i.e. the ROC curve interpolated); fpr95_at_threshold = at the first distance whose recall reaches 95%, whole tie charged; lower is better. Test part only (odd scenes, sequence 1-4..1-6), disjoint from training. Goal: the lowest fpr95 of the binary descriptors (sift is float, for reference).";
+  if (!o.shaped_peers.empty())
+    notes += " +shape rows: the peer run on each keypoint's patch resampled by our affine shape adaptation (a hybrid made to ask whether a gain is the adaptation's or the descriptor's, not the peer as OpenCV ships it; its time includes one warp and one image per keypoint).";
+  results["notes"] = notes;
+  nlohmann::ordered_json& scenes = results["scenes"] = nlohmann::ordered_json::object();
+  for (const auto& [name, fprs] : evaluation.per_pair_fpr)
+    for (const auto& [m, v] : fprs)
+      scenes[name][m] = v;
+  return results;
+}
 }  // namespace
 
 int main(int argc, char** argv)
 {
-  const ToolArguments args(argc, argv, kUsage,
-                           {"--models", "--stereo", "--sequence", "--part", "--targets", "--levels", "--pairs", "--peers", "--shaped-peers",
-                            "--json"});
-  if (!args.has("--models") || (!args.has("--stereo") && !args.has("--sequence")))
-  {
-    std::cerr << kUsage;
-    return 2;
-  }
+  const Options o = parseOptions(argc, argv);
   try
   {
-    std::vector<std::pair<std::string, std::unique_ptr<V1Descriptor>>> ours;
-    for (const auto& path : args.strings("--models"))
-    {
-      std::string stem = path.substr(path.find_last_of('/') + 1);
-      stem = stem.substr(0, stem.find('.'));
-      ours.emplace_back(stem, std::make_unique<V1Descriptor>(DescriptorModel::load(path)));
-    }
-    const auto peers = args.strings("--peers", "orb,brisk,akaze,sift");
-    const auto shaped_peers = args.strings("--shaped-peers");
-    PairSampler::Parameters sp;
-    sp.levels = args.integers("--levels", sp.levels);
-    sp.max_pairs = static_cast<int>(args.number("--pairs", 2000));
-    PairSampler sampler(sp);
-    const auto pairs = loadCorrespondencePairs(args.get("--stereo"), args.get("--part", "test"), args.get("--sequence"),
-                                               args.integers("--targets", {4, 5, 6}));
-    std::map<std::string, Scores> scores;
-    std::map<std::string, std::map<std::string, double>> per_pair_fpr;
-    // Peers get the first model's support (patch side in keypoint wavelengths).
-    const float support = static_cast<float>(ours.front().second->model().layout.patch_wavelengths);
-    V1FeaturePyramid::Parameters pyramid_parameters = ours.front().second->pyramidParameters();
-    for (const auto& [stem, descriptor] : ours)
-      pyramid_parameters.pooling_phases = std::max(pyramid_parameters.pooling_phases, descriptor->model().layout.phases);
-    V1FeaturePyramid pa(pyramid_parameters), pb(pyramid_parameters);
-    for (const auto& pair : pairs)
-    {
-      const cv::Mat ga = biovision_v1::InputImage(pair.a).gray(), gb = biovision_v1::InputImage(pair.b).gray();
-      pa.build(ga);
-      pb.build(gb);
-      const auto p = samplePairs(sampler, pair, pa, pb);
-      const size_t n = p.positive_a.size();
-      // Image B's keypoints: positives then negatives.
-      std::vector<biovision_v1::Keypoint> kb = p.positive_b;
-      kb.insert(kb.end(), p.negative_b.begin(), p.negative_b.end());
-
-      std::map<std::string, std::pair<Described, Described>> described;
-      std::map<std::string, double> seconds;
-      for (const auto& [name, descriptor] : ours)
-      {
-        auto run = [&](const cv::Mat& gray, V1FeaturePyramid& pyr, const std::vector<biovision_v1::Keypoint>& kps) {
-          const auto t0 = std::chrono::steady_clock::now();
-          pyr.build(gray);  // timed: building the cells is part of describing
-          const BinaryCodeSet codes = descriptor->compute(pyr, kps);
-          seconds[name] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-          Described d;
-          d.descriptors = cv::Mat(static_cast<int>(codes.size()), codes.words() * 8, CV_8U);
-          std::memcpy(d.descriptors.data, codes.data(), codes.size() * codes.words() * 8);
-          d.row.resize(kps.size());
-          for (size_t i = 0; i < kps.size(); ++i)
-            d.row[i] = static_cast<int>(i);
-          return d;
-        };
-        described[name] = {run(ga, pa, p.positive_a), run(gb, pb, kb)};
-      }
-      for (const auto& m : peers)
-        described[m] = {describePeer(m, pair.a, p.positive_a, support, seconds[m]),
-                        describePeer(m, pair.b, kb, support, seconds[m])};
-      if (!shaped_peers.empty())
-      {
-        const AffineShapeAdaptation adaptation(ours.front().second->model().layout.shape);
-        auto shapesOf = [&](const V1FeaturePyramid& pyr, const std::vector<biovision_v1::Keypoint>& kps) {
-          std::vector<cv::Matx22f> shapes;
-          for (const auto& k : kps)
-            shapes.push_back(adaptation.estimate(pyr, k));
-          return shapes;
-        };
-        const auto shapes_a = shapesOf(pa, p.positive_a), shapes_b = shapesOf(pb, kb);
-        for (const auto& m : shaped_peers)
-          described[m + "+shape"] = {describeShapedPeer(m, pair.a, p.positive_a, shapes_a, support, seconds[m + "+shape"]),
-                                     describeShapedPeer(m, pair.b, kb, shapes_b, support, seconds[m + "+shape"])};
-      }
-      // Only pairs every method described.
-      std::vector<size_t> kept;
-      for (size_t i = 0; i < n; ++i)
-      {
-        bool all = true;
-        for (const auto& [m, d] : described)
-          all = all && d.first.row[i] >= 0 && d.second.row[i] >= 0 && d.second.row[n + i] >= 0;
-        if (all)
-          kept.push_back(i);
-      }
-      for (auto& [m, d] : described)
-      {
-        Scores& s = scores[m];
-        s.seconds += seconds[m];
-        s.keypoints += n + kb.size();
-        s.binary = d.first.descriptors.type() == CV_8U;
-        Scores local;
-        for (size_t i : kept)
-        {
-          local.positive.push_back(distance(d.first, static_cast<int>(i), d.second, static_cast<int>(i)));
-          local.negative.push_back(distance(d.first, static_cast<int>(i), d.second, static_cast<int>(n + i)));
-        }
-        per_pair_fpr[pair.name][m] = fpr95(local.positive, local.negative);
-        s.positive.insert(s.positive.end(), local.positive.begin(), local.positive.end());
-        s.negative.insert(s.negative.end(), local.negative.begin(), local.negative.end());
-      }
-      std::cerr << pair.name << ": " << kept.size() << " of " << n << " pairs described by every method\n";
-    }
-    std::ostringstream json;
-    json << std::setprecision(5) << "{\n  \"command\": \"rosrun biovision_recognition descriptor_eval " << args.command()
-         << "\",\n";
-    std::cout << std::left << std::setw(22) << "method" << std::setw(10) << "fpr95" << std::setw(12) << "fpr95_at_t" << std::setw(10) << "roc_auc"
-              << std::setw(14) << "us/keypoint" << "pairs\n";
-    for (const auto& [m, s] : scores)
-    {
-      const double f = fpr95(s.positive, s.negative), auc = rocArea(s.positive, s.negative);
-      const double f_at_t = fpr95AtThreshold(s.positive, s.negative);
-      const double us = 1e6 * s.seconds / std::max<size_t>(1, s.keypoints);
-      std::cout << std::setw(22) << m << std::setw(10) << f << std::setw(12) << f_at_t << std::setw(10) << auc << std::setw(14) << us
-                << s.positive.size() << "\n";
-      json << "  \"" << m << "\": {\"fpr95\": " << f << ", \"fpr95_at_threshold\": " << f_at_t << ", \"roc_auc\": " << auc << ", \"us_per_keypoint\": " << us
-           << ", \"pairs\": " << s.positive.size() << ", \"binary\": " << (s.binary ? "true" : "false") << "},\n";
-    }
-    std::string notes =
-        "fpr95 = false-positive rate at exactly 95% recall (ties at the threshold distance shared in proportion, i.e. the ROC curve interpolated); fpr95_at_threshold = at the first distance whose recall reaches 95%, whole tie charged; lower is better. Test part only (odd scenes, sequence 1-4..1-6), disjoint from training. Goal: the lowest fpr95 of the binary descriptors (sift is float, for reference).";
-    if (!shaped_peers.empty())
-      notes += " +shape rows: the peer run on each keypoint's patch resampled by our affine shape adaptation (a hybrid made to ask whether a gain is the adaptation's or the descriptor's, not the peer as OpenCV ships it; its time includes one warp and one image per keypoint).";
-    json << "  \"notes\": \"" << notes << "\",\n";
-    json << "  \"scenes\": {";
-    bool first = true;
-    for (const auto& [name, fprs] : per_pair_fpr)
-    {
-      json << (first ? "\n" : ",\n") << "    \"" << name << "\": {";
-      bool f2 = true;
-      for (const auto& [m, v] : fprs)
-      {
-        json << (f2 ? "" : ", ") << "\"" << m << "\": " << v;
-        f2 = false;
-      }
-      json << "}";
-      first = false;
-    }
-    json << "\n  }\n}\n";
-    if (args.has("--json"))
-      std::ofstream(args.get("--json")) << json.str();
+    const Models ours = loadModels(o.models);
+    const nlohmann::ordered_json results = report(o, evaluate(o, ours));
+    if (!o.json_path.empty())
+      biovision_common::writeJsonFile(o.json_path, results);
   }
   catch (const std::exception& e)
   {

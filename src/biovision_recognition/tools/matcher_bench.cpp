@@ -2,7 +2,6 @@
 // cv::BFMatcher(NORM_HAMMING) on the same 128-bit codes in the same run; plus multi-index hashing.
 
 #include <chrono>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <random>
@@ -12,20 +11,17 @@
 
 #include "biovision_recognition/hamming_matcher.hpp"
 #include "biovision_recognition/multi_index_hash.hpp"
-#include "biovision_common/tool_arguments.hpp"
+#include "biovision_common/tool_options.hpp"
 
 using namespace biovision_recognition;
-using biovision_common::ToolArguments;
 
 namespace
 {
-const char* kUsage =
-    "usage: matcher_bench [--library N] [--queries N] [--k K] [--radius R] [--index-library N] [--threads N]\n"
-    "                     [--repeats N] [--json FILE]\n"
-    "  k-NN (default k = 2, the ratio test's) of N queries against a library of N 128-bit codes: ours on every\n"
-    "  kernel path and cv::BFMatcher(NORM_HAMMING), both with --threads threads (default 2); best of --repeats.\n"
-    "  Queries are library codes with up to 20 bits flipped, so near neighbours exist as in real matching.\n"
-    "  Radius search (default 24): brute force vs the multi-index hash on --index-library codes (default 2,000,000).\n";
+const char* kDescription =
+    "k-NN of --queries queries against a library of --library 128-bit codes: ours on every kernel path and\n"
+    "cv::BFMatcher(NORM_HAMMING), both with --threads threads; best of --repeats. Queries are library codes with up\n"
+    "to 20 bits flipped, so near neighbours exist as in real matching. Radius search: brute force vs the\n"
+    "multi-index hash on --index-library codes. Prints a table; --json writes the figures.";
 
 void makeData(size_t n_lib, size_t n_query, std::mt19937_64& rng, BinaryCodeSet& library, BinaryCodeSet& queries)
 {
@@ -64,15 +60,21 @@ double bestSeconds(int repeats, F&& f)
 
 int main(int argc, char** argv)
 {
-  const ToolArguments args(argc, argv, kUsage, {"--library", "--queries", "--k", "--radius", "--index-library", "--threads", "--repeats", "--json"});
-  const size_t n_lib = static_cast<size_t>(args.number("--library", 100000));
-  const size_t n_query = static_cast<size_t>(args.number("--queries", 2000));
-  const int k = static_cast<int>(args.number("--k", 2));
-  const int radius = static_cast<int>(args.number("--radius", 24));
-  const int threads = static_cast<int>(args.number("--threads", 2));
-  const int repeats = static_cast<int>(args.number("--repeats", 3));
+  size_t n_lib = 100000, n_query = 2000, n_index = 2000000;
+  int k = 2, radius = 24, threads = 2, repeats = 3;
+  std::string json_path;
+  biovision_common::ToolOptions options("matcher_bench", kDescription);
+  CLI::App& app = options.app();
+  app.add_option("--library", n_lib, "codes in the k-NN library")->check(biovision_common::kPositive);
+  app.add_option("--queries", n_query, "queries")->check(biovision_common::kPositive);
+  app.add_option("--k", k, "neighbours per query (2: the ratio test's)")->check(biovision_common::kPositive);
+  app.add_option("--radius", radius, "radius of the radius search [bits]")->check(CLI::Range(0, 128));
+  app.add_option("--index-library", n_index, "codes in the radius-search library")->check(biovision_common::kPositive);
+  app.add_option("--threads", threads, "threads, ours and BFMatcher")->check(biovision_common::kPositive);
+  app.add_option("--repeats", repeats, "timed runs (best)")->check(biovision_common::kPositive);
+  app.add_option("--json", json_path, "write the figures to this file");
+  options.parse(argc, argv);
 
-  const size_t n_index = static_cast<size_t>(args.number("--index-library", 2000000));
   std::mt19937_64 rng(1);
   BinaryCodeSet library, queries;
   makeData(n_lib, n_query, rng, library, queries);
@@ -86,10 +88,13 @@ int main(int argc, char** argv)
   std::vector<std::vector<cv::DMatch>> bf_result;
   const double bf_s = bestSeconds(repeats, [&] { bf.knnMatch(query_mat, lib_mat, bf_result, k); });
 
-  std::ostringstream json;
-  json << std::setprecision(5) << "{\n  \"command\": \"rosrun biovision_recognition matcher_bench " << args.command()
-       << "\",\n  \"library\": " << n_lib << ",\n  \"queries\": " << n_query << ",\n  \"k\": " << k
-       << ",\n  \"threads\": " << threads << ",\n  \"bfmatcher_pairs_per_s\": " << pairs / bf_s << ",\n";
+  nlohmann::ordered_json figures;
+  figures["command"] = "rosrun biovision_recognition matcher_bench " + options.command();
+  figures["library"] = n_lib;
+  figures["queries"] = n_query;
+  figures["k"] = k;
+  figures["threads"] = threads;
+  figures["bfmatcher_pairs_per_s"] = pairs / bf_s;
   std::cout << "BFMatcher(NORM_HAMMING) knn k=" << k << ": " << pairs / bf_s / 1e9 << " G pairs/s\n";
   size_t disagreements = 0;
   double best_ratio = 0.0;
@@ -105,8 +110,8 @@ int main(int argc, char** argv)
     best_ratio = std::max(best_ratio, ratio);
     std::cout << "ours " << std::setw(18) << toString(path) << ": " << pairs / s / 1e9 << " G pairs/s, " << ratio
               << "x BFMatcher\n";
-    json << "  \"ours_" << toString(path) << "_pairs_per_s\": " << pairs / s << ",\n  \"ours_" << toString(path)
-         << "_vs_bfmatcher\": " << ratio << ",\n";
+    figures["ours_" + toString(path) + "_pairs_per_s"] = pairs / s;
+    figures["ours_" + toString(path) + "_vs_bfmatcher"] = ratio;
   }
 
   // Radius search: brute force vs multi-index hashing (single thread each: the recogniser's use).
@@ -141,13 +146,29 @@ int main(int argc, char** argv)
     std::cout << "radius " << r << ": multi-index hash " << s * 1e3 << " ms (" << brute_s / s << "x brute force at "
               << radius << "), " << hits << " hits\n";
   }
-  json << "  \"best_vs_bfmatcher\": " << best_ratio << ",\n  \"nearest_distance_disagreements\": " << disagreements
-       << ",\n  \"radius\": " << radius << ",\n  \"index_library\": " << n_index << ",\n  \"radius_brute_ms\": " << brute_s * 1e3
-       << ",\n  \"radius_mih_ms\": " << mih_s * 1e3 << ",\n  \"mih_speedup\": " << brute_s / mih_s
-       << ",\n  \"mih_build_ms\": " << build_s * 1e3 << ",\n  \"mih_r8_speedup\": " << brute_s / small_radii[0].second
-       << ",\n  \"mih_r16_speedup\": " << brute_s / small_radii[1].second << ",\n  \"radius_hits_equal\": "
-       << (mih_hits == brute_hits ? "true" : "false") << ",\n  \"notes\": \"goal: >= 15x BFMatcher with 2 threads each\"\n}\n";
-  if (args.has("--json"))
-    std::ofstream(args.get("--json")) << json.str();
+  figures["best_vs_bfmatcher"] = best_ratio;
+  figures["nearest_distance_disagreements"] = disagreements;
+  figures["radius"] = radius;
+  figures["index_library"] = n_index;
+  figures["radius_brute_ms"] = brute_s * 1e3;
+  figures["radius_mih_ms"] = mih_s * 1e3;
+  figures["mih_speedup"] = brute_s / mih_s;
+  figures["mih_build_ms"] = build_s * 1e3;
+  figures["mih_r8_speedup"] = brute_s / small_radii[0].second;
+  figures["mih_r16_speedup"] = brute_s / small_radii[1].second;
+  figures["radius_hits_equal"] = mih_hits == brute_hits;
+  figures["notes"] = "goal: >= 15x BFMatcher with 2 threads each";
+  if (!json_path.empty())
+  {
+    try
+    {
+      biovision_common::writeJsonFile(json_path, figures);
+    }
+    catch (const biovision_common::FileError& e)
+    {
+      std::cerr << "matcher_bench: " << e.what() << "\n";
+      return 1;
+    }
+  }
   return disagreements == 0 && mih_hits == brute_hits ? 0 : 1;
 }

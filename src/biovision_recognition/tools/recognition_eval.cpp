@@ -4,7 +4,6 @@
 // verification, in the same run.
 
 #include <chrono>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -16,23 +15,18 @@
 
 #include "biovision_recognition/object_recognizer.hpp"
 #include "biovision_v1/input_image.hpp"
-#include "biovision_common/tool_arguments.hpp"
+#include "biovision_common/tool_options.hpp"
 
 using namespace biovision_recognition;
 using biovision_common::listDirectory;
-using biovision_common::ToolArguments;
 
 namespace
 {
-const char* kUsage =
-    "usage: recognition_eval --objects DIR --model FILE [--template-step DEG] [--distractors DIR] [options]\n"
-    "  --objects DIR        objN__ANGLE.png views (COIL-100 naming)\n"
-    "  --model FILE         trained descriptor model\n"
-    "  --template-step DEG  library = views at multiples of this (default 20); queries = the others\n"
-    "  --distractors DIR    images that contain none of the objects: any label is a false positive\n"
-    "  --upscale F          resize every image by F first (default 1)\n"
-    "  --limit N            at most N distractors (default 60)\n"
-    "  --json FILE          results\n";
+const char* kDescription =
+    "Object recognition on COIL-style folders (objN__ANGLE.png): library from the views at multiples of the template\n"
+    "step, queries = the other views, plus distractor images that must give no label. Ours (V1 keypoints + LDAHash +\n"
+    "Hamming + geometric verification) against ORB + BFMatcher + the same RANSAC verification, in the same run.\n"
+    "Prints a table; --json writes the results.";
 
 struct View
 {
@@ -123,51 +117,63 @@ private:
   std::vector<Entry> entries_;
 };
 
-void writeOutcome(std::ostream& json, const std::string& name, const Outcome& o)
+/// Prints one method's row and returns its figures.
+nlohmann::ordered_json outcomeJson(const std::string& name, const Outcome& o)
 {
   const double n = std::max(1, o.queries);
-  json << "  \"" << name << "\": {\"recognition_rate\": " << o.correct / n << ", \"wrong_label_rate\": " << o.wrong / n
-       << ", \"no_label_rate\": " << o.silent / n << ", \"distractor_false_positive_rate\": "
-       << (o.distractors ? double(o.distractor_hits) / o.distractors : 0.0)
-       << ", \"false_positive_rate\": " << double(o.wrong + o.distractor_hits) / std::max(1, o.queries + o.distractors)
-       << ", \"ms_per_query\": " << 1e3 * o.seconds / std::max(1, o.queries + o.distractors)
-       << ", \"library_codes\": " << o.library_codes << "},\n";
+  const double distractor_fp = o.distractors ? double(o.distractor_hits) / o.distractors : 0.0;
+  const double ms_per_query = 1e3 * o.seconds / std::max(1, o.queries + o.distractors);
   std::cout << std::left << std::setw(8) << name << " recognised " << std::setw(9) << o.correct / n << " wrong "
-            << std::setw(9) << o.wrong / n << " distractor FP " << std::setw(9)
-            << (o.distractors ? double(o.distractor_hits) / o.distractors : 0.0) << " ms/query "
-            << 1e3 * o.seconds / std::max(1, o.queries + o.distractors) << "\n";
+            << std::setw(9) << o.wrong / n << " distractor FP " << std::setw(9) << distractor_fp << " ms/query "
+            << ms_per_query << "\n";
+  return {{"recognition_rate", o.correct / n},
+          {"wrong_label_rate", o.wrong / n},
+          {"no_label_rate", o.silent / n},
+          {"distractor_false_positive_rate", distractor_fp},
+          {"false_positive_rate", double(o.wrong + o.distractor_hits) / std::max(1, o.queries + o.distractors)},
+          {"ms_per_query", ms_per_query},
+          {"library_codes", o.library_codes}};
 }
 }  // namespace
 
 int main(int argc, char** argv)
 {
-  const ToolArguments args(argc, argv, kUsage,
-                           {"--objects", "--model", "--template-step", "--distractors", "--upscale", "--limit", "--json"});
-  if (!args.has("--objects") || !args.has("--model"))
-  {
-    std::cerr << kUsage;
-    return 2;
-  }
+  std::string objects, model, distractors_dir, json_path;
+  int step = 20, limit = 60;
+  double upscale = 1.0;
+  biovision_common::ToolOptions options("recognition_eval", kDescription);
+  CLI::App& app = options.app();
+  app.add_option("--objects", objects, "objN__ANGLE.png views (COIL-100 naming)")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  app.add_option("--model", model, "trained descriptor model")->required()->check(CLI::ExistingFile);
+  app.add_option("--template-step", step, "library = views at multiples of this [deg]; queries = the others")
+      ->check(biovision_common::kPositive);
+  app.add_option("--distractors", distractors_dir,
+                 "images that contain none of the objects: any label is a false positive")
+      ->check(CLI::ExistingDirectory);
+  app.add_option("--upscale", upscale, "resize every image by this factor first")->check(biovision_common::kPositive);
+  app.add_option("--limit", limit, "at most this many distractors")->check(biovision_common::kNonNegative);
+  app.add_option("--json", json_path, "write the results to this file");
+  options.parse(argc, argv);
   try
   {
-    const int step = static_cast<int>(args.number("--template-step", 20));
-    const double upscale = args.number("--upscale", 1.0);
     const std::regex name_re(R"((.+)__(\d+)\.png)");
     std::vector<View> templates, queries;
-    for (const auto& f : listDirectory(args.get("--objects")))
+    for (const auto& f : listDirectory(objects))
     {
       std::smatch m;
       if (!std::regex_match(f, m, name_re))
         continue;
-      View v{m[1], std::stoi(m[2]), load(args.get("--objects") + "/" + f, upscale)};
+      View v{m[1], std::stoi(m[2]), load(objects + "/" + f, upscale)};
       (v.angle % step == 0 ? templates : queries).push_back(v);
     }
     std::vector<cv::Mat> distractors;
-    if (args.has("--distractors"))
-      for (const auto& f : listDirectory(args.get("--distractors")))
-        if (static_cast<int>(distractors.size()) < args.number("--limit", 60))
+    if (!distractors_dir.empty())
+      for (const auto& f : listDirectory(distractors_dir))
+        if (static_cast<int>(distractors.size()) < limit)
         {
-          cv::Mat img = cv::imread(args.get("--distractors") + "/" + f, cv::IMREAD_COLOR);
+          cv::Mat img = cv::imread(distractors_dir + "/" + f, cv::IMREAD_COLOR);
           if (img.empty())
             continue;
           // Same apparent size as the object images.
@@ -176,9 +182,9 @@ int main(int argc, char** argv)
           distractors.push_back(img);
         }
     if (templates.empty() || queries.empty())
-      throw std::runtime_error("no templates or no queries in " + args.get("--objects"));
+      throw std::runtime_error("no templates or no queries in " + objects);
 
-    auto descriptor = std::make_shared<const V1Descriptor>(DescriptorModel::load(args.get("--model")));
+    auto descriptor = std::make_shared<const V1Descriptor>(DescriptorModel::load(model));
     ObjectRecognizer recognizer(descriptor, ObjectRecognizer::Parameters());
     ObjectMemory memory(descriptor->model().bits(), descriptor->model().id());
     OrbBaseline orb(recognizer.parameters().verifier);
@@ -224,15 +230,17 @@ int main(int argc, char** argv)
       run(q.image, q.label);
     for (const auto& d : distractors)
       run(d, "");
-    std::ostringstream json;
-    json << std::setprecision(5) << "{\n  \"command\": \"rosrun biovision_recognition recognition_eval " << args.command()
-         << "\",\n  \"templates\": " << templates.size() << ",\n  \"queries\": " << queries.size()
-         << ",\n  \"distractors\": " << distractors.size() << ",\n";
-    writeOutcome(json, "v1", ours);
-    writeOutcome(json, "orb", base);
-    json << "  \"notes\": \"goal: >= 90% recognised with <= 2% false positives, ahead of ORB + BFMatcher (ratio test 0.8) + the same RANSAC verification\"\n}\n";
-    if (args.has("--json"))
-      std::ofstream(args.get("--json")) << json.str();
+    nlohmann::ordered_json results;
+    results["command"] = "rosrun biovision_recognition recognition_eval " + options.command();
+    results["templates"] = templates.size();
+    results["queries"] = queries.size();
+    results["distractors"] = distractors.size();
+    results["v1"] = outcomeJson("v1", ours);
+    results["orb"] = outcomeJson("orb", base);
+    results["notes"] = "goal: >= 90% recognised with <= 2% false positives, ahead of ORB + BFMatcher (ratio test 0.8) + "
+                       "the same RANSAC verification";
+    if (!json_path.empty())
+      biovision_common::writeJsonFile(json_path, results);
   }
   catch (const std::exception& e)
   {

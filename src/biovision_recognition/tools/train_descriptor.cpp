@@ -1,45 +1,114 @@
 // Trains the LDAHash projection and thresholds of the V1 descriptor from real correspondences.
 
+#include <array>
 #include <chrono>
 #include <ctime>
-#include <fstream>
 #include <iostream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+#include <vector>
 
 #include <Eigen/Core>
 
 #include "biovision_recognition/lda_hash_trainer.hpp"
 #include "biovision_recognition/pooled_cell_features.hpp"
 #include "correspondence_data.hpp"
-#include "biovision_common/tool_arguments.hpp"
+#include "biovision_common/tool_options.hpp"
 
 using namespace biovision_recognition;
-using biovision_common::ToolArguments;
 
 namespace
 {
-const char* kUsage =
-    "usage: train_descriptor --out FILE [--stereo DIR] [--sequence DIR] [options]\n"
-    "  --stereo DIR          folder of Middlebury scenes (ground-truth disparities give the pairs)\n"
-    "  --sequence DIR        HPatches/Oxford sequence (homographies give the pairs)\n"
-    "  --part P              train (default), test or all: scenes alternate train/test in name order\n"
-    "  --targets LIST        sequence images paired with image 1 (default 2,3: 4,5,6 are the test part)\n"
-    "  --all-pairs           every ordered pair of image 1 and the targets (1-2, 2-1, 2-3, ...), not only 1-k\n"
-    "  --bits N              64, 128 (default) or 256\n"
-    "  --scales LIST         descriptor scales j, lambda = 4 * 2^(j/2) of the 32 px patch (default 0,1,2,3,4,5,6)\n"
-    "  --levels LIST         pyramid levels keypoints are detected at (default 0,1,2,3,4)\n"
-    "  --patch W             patch side in keypoint wavelengths (default 8: 32 px at lambda 4)\n"
-    "  --pooling D,S         pooling disk diameter and step in level px (default 4,2)\n"
-    "  --phases N            4 (default): even, odd, -even, -odd maxima; 2: signed even, odd maxima only\n"
-    "  --shape I,W,L,A       affine shape adaptation of the pooling grid: iterations (0: square grid), window\n"
-    "                        sigma [wavelengths], gradient level offset, largest anisotropy (default 4,1.5,1,4)\n"
-    "  --warps N             add N synthetic camera tilts of every training image (ASIFT model)\n"
-    "  --max-tilt T          largest synthetic tilt (default 2.5);  --warp-pairs N: pairs per warp (default 500)\n"
-    "  --pairs N             pairs of each kind per image pair (default 1500)\n"
-    "  --rank N              eigenpairs of Sigma_N kept for the whitening (default 512)\n"
-    "  --ridge R             whitening ridge, relative to Sigma_N's largest eigenvalue (default 1e-3)\n"
-    "  --threads N           threads for Eigen's products (default 2)\n"
+/// What the command line sets; every default is the trainer's own unless given here.
+struct Options
+{
+  std::string out, stereo, sequence, json_path, part = "train";
+  std::vector<int> targets{2, 3};  // 4, 5, 6 are the test part
+  bool all_pairs = false;
+  DescriptorLayout layout;
+  PairSampler::Parameters sampling;
+  int warps = 0;
+  double max_tilt = 2.5;
+  int warp_pairs = 500;
+  LdaHashTrainer::Parameters training;
+  int threads = 2;
+  std::string command;  // the options as given, for the model's provenance
+};
 
-    "  --json FILE           training statistics\n";
+Options parseOptions(int argc, char** argv)
+{
+  Options o;
+  o.sampling.max_pairs = 1500;  // --pairs: this tool's default, not the sampler's
+  std::array<int, 2> pooling{o.layout.pooling_diameter, o.layout.pooling_step};
+  const auto& d = o.layout.shape;
+  std::tuple<int, double, int, double> shape{d.iterations, d.window_wavelengths, d.level_offset, d.max_anisotropy};
+  std::ostringstream shape_default;  // CLI11 cannot print a tuple's default itself
+  shape_default << "[" << d.iterations << "," << d.window_wavelengths << "," << d.level_offset << ","
+                << d.max_anisotropy << "]";
+
+  biovision_common::ToolOptions options(
+      "train_descriptor",
+      "Trains the LDAHash projection and thresholds of the V1 descriptor from real correspondences.");
+  CLI::App& app = options.app();
+  app.add_option("--out", o.out, "model file to write")->required();
+  app.add_option("--stereo", o.stereo, "folder of Middlebury scenes (ground-truth disparities give the pairs)");
+  app.add_option("--sequence", o.sequence, "HPatches/Oxford sequence (homographies give the pairs)");
+  app.add_option("--part", o.part, "scenes alternate train/test in name order")
+      ->check(CLI::IsMember({"train", "test", "all"}));
+  app.add_option("--targets", o.targets, "sequence images paired with image 1")
+      ->delimiter(',')
+      ->check(biovision_common::kPositive);
+  app.add_flag("--all-pairs", o.all_pairs,
+               "every ordered pair of image 1 and the targets (1-2, 2-1, 2-3, ...), not only 1-k");
+  app.add_option("--bits", o.training.bits, "code length")->check(CLI::IsMember({64, 128, 256}));
+  app.add_option("--scales", o.layout.scales, "descriptor scales j, lambda = 4 * 2^(j/2) of the 32 px patch")
+      ->delimiter(',');
+  app.add_option("--levels", o.sampling.levels, "pyramid levels keypoints are detected at")
+      ->delimiter(',')
+      ->check(biovision_common::kNonNegative);
+  app.add_option("--patch", o.layout.patch_wavelengths, "patch side in keypoint wavelengths (8: 32 px at lambda 4)");
+  app.add_option("--pooling", pooling, "pooling disk diameter and step in level px (D,S)")->delimiter(',');
+  app.add_option("--phases", o.layout.phases, "4: even, odd, -even, -odd maxima; 2: signed even, odd maxima only");
+  app.add_option("--shape", shape,
+                 "affine shape adaptation of the pooling grid (I,W,L,A): iterations (0: square grid), window sigma "
+                 "[wavelengths], gradient level offset, largest anisotropy")
+      ->delimiter(',')
+      ->default_str(shape_default.str());
+  app.add_option("--warps", o.warps, "add N synthetic camera tilts of every training image (ASIFT model)")
+      ->check(biovision_common::kNonNegative);
+  app.add_option("--max-tilt", o.max_tilt, "largest synthetic tilt")->check(biovision_common::kPositive);
+  app.add_option("--warp-pairs", o.warp_pairs, "pairs per warp")->check(biovision_common::kPositive);
+  app.add_option("--pairs", o.sampling.max_pairs, "pairs of each kind per image pair")
+      ->check(biovision_common::kPositive);
+  app.add_option("--rank", o.training.whitening_rank, "eigenpairs of Sigma_N kept for the whitening")
+      ->check(biovision_common::kPositive);
+  app.add_option("--ridge", o.training.ridge, "whitening ridge, relative to Sigma_N's largest eigenvalue")
+      ->check(biovision_common::kPositive);
+  app.add_option("--threads", o.threads, "threads for Eigen's products")->check(biovision_common::kPositive);
+  app.add_option("--json", o.json_path, "write the training statistics to this file");
+  app.callback([&] {
+    if (o.stereo.empty() && o.sequence.empty())
+      throw CLI::RequiredError("--stereo or --sequence");
+    o.layout.pooling_diameter = pooling[0];
+    o.layout.pooling_step = pooling[1];
+    auto& adaptation = o.layout.shape;
+    std::tie(adaptation.iterations, adaptation.window_wavelengths, adaptation.level_offset, adaptation.max_anisotropy) =
+        shape;
+    try
+    {
+      o.layout.validate();  // the layout's bounds are written there only
+    }
+    catch (const std::invalid_argument& e)
+    {
+      throw CLI::ValidationError(e.what());
+    }
+  });
+  options.parse(argc, argv);
+  o.command = options.command();
+  return o;
+}
 
 using Matrix = LdaHashTrainer::Matrix;
 
@@ -64,60 +133,29 @@ Matrix stack(std::vector<cv::Mat>& blocks, int cols)
 
 int main(int argc, char** argv)
 {
-  const ToolArguments args(argc, argv, kUsage,
-                           {"--out", "--shape", "--stereo", "--sequence", "--part", "--targets", "--bits", "--scales", "--levels",
-                            "--pairs", "--rank", "--ridge", "--threads", "--patch", "--pooling", "--json", "--phases", "--warps", "--max-tilt", "--warp-pairs"},
-                           {"--all-pairs"});
-  if (!args.has("--out") || (!args.has("--stereo") && !args.has("--sequence")))
-  {
-    std::cerr << kUsage;
-    return 2;
-  }
-  Eigen::setNbThreads(static_cast<int>(args.number("--threads", 2)));
+  const Options o = parseOptions(argc, argv);
+  Eigen::setNbThreads(o.threads);
   const auto t0 = std::chrono::steady_clock::now();
   try
   {
-    DescriptorLayout layout;
-    layout.scales = args.integers("--scales", layout.scales);
-    layout.patch_wavelengths = args.number("--patch", layout.patch_wavelengths);
-    const std::vector<int> pooling = args.integers("--pooling", {layout.pooling_diameter, layout.pooling_step});
-    if (pooling.size() != 2)
-      throw std::invalid_argument("--pooling takes D,S");
-    layout.pooling_diameter = pooling[0];
-    layout.pooling_step = pooling[1];
-    layout.phases = static_cast<int>(args.number("--phases", layout.phases));
-    if (args.has("--shape"))
-    {
-      const auto shape = args.strings("--shape");
-      if (shape.size() != 4)
-        throw std::invalid_argument("--shape takes I,W,L,A");
-      layout.shape.iterations = std::stoi(shape[0]);
-      layout.shape.window_wavelengths = std::stod(shape[1]);
-      layout.shape.level_offset = std::stoi(shape[2]);
-      layout.shape.max_anisotropy = std::stod(shape[3]);
-    }
+    const DescriptorLayout& layout = o.layout;
     const PooledCellFeatures features(layout);
-    PairSampler::Parameters sp;
-    sp.levels = args.integers("--levels", sp.levels);
-    sp.max_pairs = static_cast<int>(args.number("--pairs", 1500));
-    PairSampler sampler(sp);
+    PairSampler sampler(o.sampling);
     V1FeaturePyramid::Parameters pp;
     pp.orientations = layout.orientations;
     pp.pooling_diameter = layout.pooling_diameter;
     pp.pooling_phases = layout.phases;
     V1FeaturePyramid pa(pp), pb(pp);
 
-    auto pairs = loadCorrespondencePairs(args.get("--stereo"), args.get("--part", "train"), args.get("--sequence"),
-                                         args.integers("--targets", {2, 3}), args.has("--all-pairs"));
+    auto pairs = loadCorrespondencePairs(o.stereo, o.part, o.sequence, o.targets, o.all_pairs);
     const size_t real_pairs = pairs.size();
-    if (args.has("--warps"))
+    if (o.warps > 0)
     {
-      const auto warps = syntheticViewpoints(pairs, static_cast<int>(args.number("--warps", 0)),
-                                             args.number("--max-tilt", 2.5), 11);
+      const auto warps = syntheticViewpoints(pairs, o.warps, o.max_tilt, 11);
       pairs.insert(pairs.end(), warps.begin(), warps.end());
     }
-    PairSampler::Parameters wp = sp;
-    wp.max_pairs = static_cast<int>(args.number("--warp-pairs", 500));
+    PairSampler::Parameters wp = o.sampling;
+    wp.max_pairs = o.warp_pairs;
     PairSampler warp_sampler(wp);
 
     // One side of each pair and the pair differences: four matrices, not six, for large training sets.
@@ -139,28 +177,28 @@ int main(int argc, char** argv)
     const Matrix negative_a = stack(ya, n), negative_difference = stack(dy, n);
     std::cerr << "training on " << positive_a.rows() << " positive and " << negative_a.rows() << " negative pairs, "
               << layout.featureCount() << " features\n";
-    LdaHashTrainer::Parameters tp;
-    tp.bits = static_cast<int>(args.number("--bits", 128));
-    tp.whitening_rank = static_cast<int>(args.number("--rank", 512));
-    tp.ridge = args.number("--ridge", tp.ridge);
-    const LdaHashTrainer trainer(tp);
+    const LdaHashTrainer trainer(o.training);
     DescriptorModel model = trainer.trainOnDifferences(positive_a, positive_difference, negative_a, negative_difference);
     model.layout = layout;
     const std::time_t now = std::time(nullptr);
     char date[32];
     std::strftime(date, sizeof(date), "%Y-%m-%d", std::gmtime(&now));
-    model.provenance = "rosrun biovision_recognition train_descriptor " + args.command() + "  (" +
+    model.provenance = "rosrun biovision_recognition train_descriptor " + o.command + "  (" +
                        std::to_string(positive_a.rows()) + " positive / " + std::to_string(negative_a.rows()) + " negative pairs, " +
                        date + ")";
-    model.save(args.get("--out"));
+    model.save(o.out);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    std::cerr << "wrote " << args.get("--out") << " (" << model.id() << ") in " << seconds << " s\n";
-    if (args.has("--json"))
+    std::cerr << "wrote " << o.out << " (" << model.id() << ") in " << seconds << " s\n";
+    if (!o.json_path.empty())
     {
-      std::ofstream json(args.get("--json"));
-      json << "{\n  \"model\": \"" << model.id() << "\",\n  \"features\": " << layout.featureCount()
-           << ",\n  \"bits\": " << model.bits() << ",\n  \"positive_pairs\": " << positive_a.rows()
-           << ",\n  \"negative_pairs\": " << negative_a.rows() << ",\n  \"seconds\": " << seconds << "\n}\n";
+      nlohmann::ordered_json statistics;
+      statistics["model"] = model.id();
+      statistics["features"] = layout.featureCount();
+      statistics["bits"] = model.bits();
+      statistics["positive_pairs"] = positive_a.rows();
+      statistics["negative_pairs"] = negative_a.rows();
+      statistics["seconds"] = seconds;
+      biovision_common::writeJsonFile(o.json_path, statistics);
     }
   }
   catch (const std::exception& e)

@@ -14,6 +14,8 @@
 #include <rosbag/bag.h>
 #include <sensor_msgs/CameraInfo.h>
 
+#include "biovision_common/tool_options.hpp"
+
 namespace
 {
 struct Camera
@@ -65,29 +67,15 @@ sensor_msgs::CameraInfo info(const Camera& c, const cv::Mat& R, const cv::Mat& P
 int main(int argc, char** argv)
 {
   std::string dataset, output, frame = "stereo_left_optical";
-  for (int i = 1; i < argc; ++i)
-  {
-    const std::string a = argv[i];
-    if (a == "--dataset" && i + 1 < argc)
-      dataset = argv[++i];
-    else if (a == "--output" && i + 1 < argc)
-      output = argv[++i];
-    else if (a == "--frame" && i + 1 < argc)
-      frame = argv[++i];
-    else
-    {
-      std::cerr << "usage: euroc_to_bag --dataset DIR/mav0 --output FILE.bag [--frame stereo_left_optical]\n"
-                   "  Pairs listed in cam0/data.csv whose images exist in both cam0/data and cam1/data are written\n"
-                   "  as stereo/{left,right}/image_raw (mono8) + camera_info with the stereo rectification\n"
-                   "  (cv::stereoRectify of the sensor.yaml intrinsics, distortion and extrinsics).\n";
-      return a == "--help" ? 0 : 2;
-    }
-  }
-  if (dataset.empty() || output.empty())
-  {
-    std::cerr << "euroc_to_bag: --dataset and --output are required (see --help)\n";
-    return 2;
-  }
+  biovision_common::ToolOptions options(
+      "euroc_to_bag",
+      "Pairs listed in cam0/data.csv whose images exist in both cam0/data and cam1/data are written as\n"
+      "stereo/{left,right}/image_raw (mono8) + camera_info with the stereo rectification (cv::stereoRectify of\n"
+      "the sensor.yaml intrinsics, distortion and extrinsics).");
+  options.app().add_option("--dataset", dataset, "EuRoC folder DIR/mav0")->required();
+  options.app().add_option("--output", output, "bag file to write")->required();
+  options.app().add_option("--frame", frame, "frame_id of images and camera_info");
+  options.parse(argc, argv);
   try
   {
     const Camera c0 = readSensor(dataset + "/cam0/sensor.yaml"), c1 = readSensor(dataset + "/cam1/sensor.yaml");

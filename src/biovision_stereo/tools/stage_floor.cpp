@@ -5,9 +5,7 @@
 // "no slower than the peer" goal with this model.
 
 #include <chrono>
-#include <fstream>
 #include <iostream>
-#include <sstream>
 
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/utility.hpp>
@@ -18,7 +16,7 @@
 #include "biovision_common/eval/middlebury_dataset.hpp"
 #include "biovision_stereo/pixel_descriptor.hpp"
 #include "biovision_v1/simple_cell_bank.hpp"
-#include "biovision_common/tool_arguments.hpp"
+#include "biovision_common/tool_options.hpp"
 
 using biovision_common::MiddleburyDataset;
 
@@ -26,11 +24,10 @@ using namespace biovision_stereo;
 
 namespace
 {
-const char* kUsage =
-    "usage: stage_floor --dataset DIR [--json FILE] [--threads 2] [--repeats 10]\n"
-    "  per scene: sgbm_ms (MODE_SGBM_3WAY, whole), odd_cells_ms (BioBin's odd cells, 2 images, every level),\n"
-    "  hamming_ms (finest level's 256-bit cost volume alone), bm_fast_ms (StereoBM at quarter size incl.\n"
-    "  resize, whole), fast_cells_ms (the fast mode's odd cells alone, 2 images).\n";
+const char* kDescription =
+    "Per scene, same run: sgbm_ms (MODE_SGBM_3WAY, whole), odd_cells_ms (BioBin's odd cells, 2 images, every level),\n"
+    "hamming_ms (finest level's 256-bit cost volume alone), bm_fast_ms (StereoBM at quarter size incl. resize,\n"
+    "whole), fast_cells_ms (the fast mode's odd cells alone, 2 images). Prints the JSON.";
 
 template <class F>
 double milliseconds(F&& f, int repeats)
@@ -40,6 +37,16 @@ double milliseconds(F&& f, int repeats)
   for (int i = 0; i < repeats; ++i)
     f();
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count() / repeats;
+}
+
+/// One scene's (or the mean) milliseconds per stage, in the JSON's order.
+nlohmann::ordered_json stageTimes(double sgbm, double odd_cells, double hamming, double bm_fast, double fast_cells)
+{
+  return {{"sgbm_ms", sgbm},
+          {"odd_cells_ms", odd_cells},
+          {"hamming_ms", hamming},
+          {"bm_fast_ms", bm_fast},
+          {"fast_cells_ms", fast_cells}};
 }
 
 cv::Mat unitGray(const cv::Mat& bgr, cv::Size size)
@@ -54,21 +61,25 @@ cv::Mat unitGray(const cv::Mat& bgr, cv::Size size)
 
 int main(int argc, char** argv)
 {
-  const biovision_common::ToolArguments args(argc, argv, kUsage, {"--dataset", "--json", "--threads", "--repeats"});
-  if (!args.has("--dataset"))
-  {
-    std::cerr << kUsage;
-    return 2;
-  }
-  cv::setNumThreads(static_cast<int>(args.number("--threads", 2)));
-  const int repeats = std::max(1, static_cast<int>(args.number("--repeats", 10)));
+  std::string dataset, json_path;
+  int threads = 2, repeats = 10;
+  biovision_common::ToolOptions options("stage_floor", kDescription);
+  CLI::App& app = options.app();
+  app.add_option("--dataset", dataset, "one Middlebury scene or a folder of scenes (see MiddleburyDataset)")
+      ->required();
+  app.add_option("--json", json_path, "also write the figures to this file");
+  app.add_option("--threads", threads, "OpenCV threads")->check(biovision_common::kPositive);
+  app.add_option("--repeats", repeats, "timed runs per stage (mean; StereoBM 5x) after one warm-up")
+      ->check(biovision_common::kPositive);
+  options.parse(argc, argv);
+  cv::setNumThreads(threads);
   const BioBinParameters defaults;
-  std::ostringstream scenes;
+  nlohmann::ordered_json scenes = nlohmann::ordered_json::object();
   double sum_sgbm = 0, sum_cells = 0, sum_ham = 0, sum_bm = 0, sum_fast = 0;
   int n = 0;
   try
   {
-    for (const auto& s : MiddleburyDataset::load(args.get("--dataset")))
+    for (const auto& s : MiddleburyDataset::load(dataset))
     {
       const int nd = s.max_disparity;
       cv::Mat d, gl, gr;
@@ -122,8 +133,7 @@ int main(int argc, char** argv)
             });
           },
           repeats);
-      scenes << (n ? ",\n" : "\n") << "    \"" << s.name << "\": {\"sgbm_ms\": " << t_sgbm << ", \"odd_cells_ms\": " << t_cells
-             << ", \"hamming_ms\": " << t_ham << ", \"bm_fast_ms\": " << t_bm << ", \"fast_cells_ms\": " << t_fast << "}";
+      scenes[s.name] = stageTimes(t_sgbm, t_cells, t_ham, t_bm, t_fast);
       std::cerr << s.name << ": sgbm " << t_sgbm << " ms, odd cells " << t_cells << " ms, hamming " << t_ham
                 << " ms | bm_fast " << t_bm << " ms, fast-mode cells " << t_fast << " ms\n";
       sum_sgbm += t_sgbm, sum_cells += t_cells, sum_ham += t_ham, sum_bm += t_bm, sum_fast += t_fast;
@@ -137,20 +147,27 @@ int main(int argc, char** argv)
   }
   if (n == 0)
   {
-    std::cerr << "stage_floor: no scenes in " << args.get("--dataset") << "\n";
+    std::cerr << "stage_floor: no scenes in " << dataset << "\n";
     return 1;
   }
-  std::ostringstream json;
-  json << "{\n  \"command\": \"rosrun biovision_stereo stage_floor " << args.command() << "\",\n"
-       << "  \"mean\": {\"sgbm_ms\": " << sum_sgbm / n << ", \"odd_cells_ms\": " << sum_cells / n
-       << ", \"hamming_ms\": " << sum_ham / n << ", \"bm_fast_ms\": " << sum_bm / n
-       << ", \"fast_cells_ms\": " << sum_fast / n << "},\n"
-       << "  \"ratios\": {\"odd_cells_vs_sgbm\": " << sum_cells / sum_sgbm
-       << ", \"fast_cells_vs_bm_fast\": " << sum_fast / sum_bm << "},\n"
-       << "  \"notes\": \"Ratios > 1: the mandated stage alone takes longer than the peer's whole computation.\",\n"
-       << "  \"scenes\": {" << scenes.str() << "\n  }\n}\n";
-  std::cout << json.str();
-  if (args.has("--json"))
-    std::ofstream(args.get("--json")) << json.str();
+  nlohmann::ordered_json figures;
+  figures["command"] = "rosrun biovision_stereo stage_floor " + options.command();
+  figures["mean"] = stageTimes(sum_sgbm / n, sum_cells / n, sum_ham / n, sum_bm / n, sum_fast / n);
+  figures["ratios"] = {{"odd_cells_vs_sgbm", sum_cells / sum_sgbm}, {"fast_cells_vs_bm_fast", sum_fast / sum_bm}};
+  figures["notes"] = "Ratios > 1: the mandated stage alone takes longer than the peer's whole computation.";
+  figures["scenes"] = scenes;
+  std::cout << figures.dump(2) << "\n";
+  if (!json_path.empty())
+  {
+    try
+    {
+      biovision_common::writeJsonFile(json_path, figures);
+    }
+    catch (const biovision_common::FileError& e)
+    {
+      std::cerr << "stage_floor: " << e.what() << "\n";
+      return 1;
+    }
+  }
   return 0;
 }

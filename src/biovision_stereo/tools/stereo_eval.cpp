@@ -3,11 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <functional>
 #include <iostream>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -19,7 +17,7 @@
 #include "biovision_stereo/bio_bin_matcher.hpp"
 #include "biovision_common/eval/disparity_metrics.hpp"
 #include "biovision_common/eval/middlebury_dataset.hpp"
-#include "biovision_common/tool_arguments.hpp"
+#include "biovision_common/tool_options.hpp"
 
 using biovision_common::MiddleburyDataset;
 using biovision_common::DisparityMetrics;
@@ -29,15 +27,12 @@ using namespace biovision_stereo;
 
 namespace
 {
-const char* kUsage =
-    "usage: stereo_eval --dataset DIR [--json FILE] [--methods LIST] [--threads N] [--scenes LIST]\n"
-    "                   [--repeats N]\n"
-    "  DIR: one Middlebury scene or a folder of scenes (v3 im0/im1/calib.txt/disp0GT.pfm, v2 quartet,\n"
-    "       2001-2006 layouts; see MiddleburyDataset).\n"
-    "  methods (default all): biobin, biobin_fast (one scale, lambda 16), bm, bm_fast (StereoBM on the\n"
-    "       quarter-size pair, the fast mode's resolution), sgbm (MODE_SGBM_3WAY), binary_sgbm (contrib).\n"
-    "  Metrics on the non-occluded mask when there is one: bad0.5/1/2/4 (%, invalid = bad), avgerr over\n"
-    "  valid estimates, invalid %, seconds per pair (median of --repeats runs after one warm-up).\n";
+const char* kDescription =
+    "BioBin and the stereo matchers a user would otherwise pick, on Middlebury scenes with ground truth, in the same\n"
+    "run with the same search range and thread count. Methods: biobin, biobin_fast (one scale, lambda 16), bm,\n"
+    "bm_fast (StereoBM on the quarter-size pair, the fast mode's resolution), sgbm (MODE_SGBM_3WAY), binary_sgbm\n"
+    "(contrib). Metrics on the non-occluded mask when there is one: bad0.5/1/2/4 (%, invalid = bad), avgerr over\n"
+    "valid estimates, invalid %, seconds per pair (median of --repeats runs after one warm-up). Prints the JSON.";
 
 using Matcher = std::function<cv::Mat(const StereoScene&)>;  // returns CV_32F disparity, < 0 invalid
 
@@ -127,31 +122,39 @@ std::map<std::string, Matcher> makeMatchers(std::map<std::string, std::unique_pt
   return m;
 }
 
-std::string metricsJson(const DisparityMetrics& m, double seconds)
+nlohmann::ordered_json metricsJson(const DisparityMetrics& m, double seconds)
 {
-  char buf[256];
-  std::snprintf(buf, sizeof buf,
-                "{\"bad0.5\": %.3f, \"bad1.0\": %.3f, \"bad2.0\": %.3f, \"bad4.0\": %.3f, \"avgerr\": %.4f, "
-                "\"invalid\": %.3f, \"seconds_per_pair\": %.5f}",
-                m.bad05, m.bad1, m.bad2, m.bad4, m.avgerr, m.invalid, seconds);
-  return buf;
+  return {{"bad0.5", m.bad05}, {"bad1.0", m.bad1},     {"bad2.0", m.bad2},
+          {"bad4.0", m.bad4},  {"avgerr", m.avgerr},   {"invalid", m.invalid},
+          {"seconds_per_pair", seconds}};
 }
 }  // namespace
 
 int main(int argc, char** argv)
 {
-  const biovision_common::ToolArguments args(argc, argv, kUsage,
-                                         {"--dataset", "--json", "--methods", "--threads", "--scenes", "--repeats"});
-  const std::string dataset = args.get("--dataset"), json_path = args.get("--json");
-  const std::vector<std::string> methods = args.strings("--methods", "biobin,biobin_fast,bm,bm_fast,sgbm,binary_sgbm");
-  const std::vector<std::string> only_scenes = args.strings("--scenes");
-  const int threads = static_cast<int>(args.number("--threads", 2));
-  const int repeats = std::max(1, static_cast<int>(args.number("--repeats", 3)));
-  if (dataset.empty())
-  {
-    std::cerr << kUsage;
-    return 2;
-  }
+  std::map<std::string, std::unique_ptr<BioBinMatcher>> keep;
+  const auto matchers = makeMatchers(keep);
+  std::vector<std::string> method_names;
+  for (const auto& [name, matcher] : matchers)
+    method_names.push_back(name);
+
+  std::string dataset, json_path;
+  std::vector<std::string> methods{"biobin", "biobin_fast", "bm", "bm_fast", "sgbm", "binary_sgbm"}, only_scenes;
+  int threads = 2, repeats = 3;
+  biovision_common::ToolOptions options("stereo_eval", kDescription);
+  CLI::App& app = options.app();
+  app.add_option("--dataset", dataset,
+                 "one Middlebury scene or a folder of scenes (v3 im0/im1/calib.txt/disp0GT.pfm, v2 quartet, 2001-2006 "
+                 "layouts; see MiddleburyDataset)")
+      ->required();
+  app.add_option("--json", json_path, "also write the results to this file");
+  app.add_option("--methods", methods, "methods, comma-separated")->delimiter(',')->check(CLI::IsMember(method_names));
+  app.add_option("--threads", threads, "OpenCV threads, every method")->check(biovision_common::kPositive);
+  app.add_option("--scenes", only_scenes, "only these scenes, comma-separated (default: all)")->delimiter(',');
+  app.add_option("--repeats", repeats, "timed runs per pair (median) after one warm-up")
+      ->check(biovision_common::kPositive);
+  options.parse(argc, argv);
+
   cv::setNumThreads(threads);
   std::vector<StereoScene> scenes;
   try
@@ -169,29 +172,20 @@ int main(int argc, char** argv)
                                   return std::find(only_scenes.begin(), only_scenes.end(), s.name) == only_scenes.end();
                                 }),
                  scenes.end());
-  std::map<std::string, std::unique_ptr<BioBinMatcher>> keep;
-  const auto matchers = makeMatchers(keep);
-  for (const auto& m : methods)
-    if (!matchers.count(m))
-    {
-      std::cerr << "stereo_eval: unknown method " << m << "\n" << kUsage;
-      return 2;
-    }
 
   std::map<std::string, std::vector<DisparityMetrics>> per_method;
   std::map<std::string, std::vector<double>> seconds;
-  std::ostringstream scenes_json;
-  scenes_json << "{";
-  for (size_t si = 0; si < scenes.size(); ++si)
+  nlohmann::ordered_json scenes_json = nlohmann::ordered_json::object();
+  for (const StereoScene& s : scenes)
   {
-    const StereoScene& s = scenes[si];
     if (s.ground_truth.empty())
     {
       std::cerr << "stereo_eval: " << s.name << " has no ground truth, skipped\n";
       continue;
     }
-    scenes_json << (si ? ", " : "") << "\"" << s.name << "\": {\"size\": [" << s.left.cols << ", " << s.left.rows
-                << "], \"max_disparity\": " << s.max_disparity;
+    nlohmann::ordered_json& scene_json = scenes_json[s.name];
+    scene_json["size"] = {s.left.cols, s.left.rows};
+    scene_json["max_disparity"] = s.max_disparity;
     for (const auto& name : methods)
     {
       const Matcher& match = matchers.at(name);
@@ -208,20 +202,20 @@ int main(int argc, char** argv)
       const DisparityMetrics m = DisparityMetrics::compute(d, s.ground_truth, s.nonoccluded);
       per_method[name].push_back(m);
       seconds[name].push_back(sec);
-      scenes_json << ", \"" << name << "\": " << metricsJson(m, sec);
+      scene_json[name] = metricsJson(m, sec);
       std::fprintf(stderr, "%-12s %-12s bad1.0 %6.2f%%  bad2.0 %6.2f%%  invalid %5.1f%%  avgerr %.3f  %.4f s\n",
                    s.name.c_str(), name.c_str(), m.bad1, m.bad2, m.invalid, m.avgerr, sec);
     }
-    scenes_json << "}";
   }
-  scenes_json << "}";
 
-  std::ostringstream out;
   std::string command = "rosrun biovision_stereo stereo_eval";
   for (int i = 1; i < argc; ++i)
     command += std::string(" ") + (std::string(argv[i]).find(".json") != std::string::npos ? "FILE" : argv[i]);
-  out << "{\n  \"command\": \"" << command << "\",\n  \"dataset\": \"" << dataset << "\",\n  \"threads\": " << threads << ",\n  \"scenes_evaluated\": "
-      << (per_method.empty() ? 0 : per_method.begin()->second.size()) << ",\n";
+  nlohmann::ordered_json results;
+  results["command"] = command;
+  results["dataset"] = dataset;
+  results["threads"] = threads;
+  results["scenes_evaluated"] = per_method.empty() ? 0 : per_method.begin()->second.size();
   std::map<std::string, DisparityMetrics> means;
   std::map<std::string, double> mean_seconds;
   for (const auto& name : methods)
@@ -239,34 +233,34 @@ int main(int argc, char** argv)
       mean.invalid += ms[i].invalid / ms.size();
       sec += seconds[name][i] / ms.size();
     }
-    out << "  \"" << name << "\": " << metricsJson(mean, sec) << ",\n";
+    results[name] = metricsJson(mean, sec);
     means[name] = mean;
     mean_seconds[name] = sec;
   }
+  results["notes"] = "Ratios: ours / peer, same run (time < 1 = faster, bad1.0 < 1 = fewer errors). Data: Middlebury "
+                     "(Scharstein & Szeliski 2002/2003, Scharstein & Pal 2007, Hirschmueller & Scharstein 2007).";
   // Ratios against the peers, same run: time (ours / peer, < 1 = faster) and bad 1.0 (ours / peer).
   auto ratio = [&](const std::string& ours, const std::string& peer) {
     if (!means.count(ours) || !means.count(peer) || mean_seconds[peer] <= 0 || means[peer].bad1 <= 0)
       return;
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "{\"time\": %.3f, \"bad1.0\": %.3f}", mean_seconds[ours] / mean_seconds[peer],
-                  means[ours].bad1 / means[peer].bad1);
-    out << "  \"ratio_" << ours << "_vs_" << peer << "\": " << buf << ",\n";
+    results["ratio_" + ours + "_vs_" + peer] = {{"time", mean_seconds[ours] / mean_seconds[peer]},
+                                                {"bad1.0", means[ours].bad1 / means[peer].bad1}};
   };
-  out << "  \"notes\": \"Ratios: ours / peer, same run (time < 1 = faster, bad1.0 < 1 = fewer errors). Data: "
-         "Middlebury (Scharstein & Szeliski 2002/2003, Scharstein & Pal 2007, Hirschmueller & Scharstein 2007).\",\n";
   ratio("biobin", "sgbm");
   ratio("biobin", "binary_sgbm");
   ratio("biobin_fast", "bm_fast");
   ratio("biobin_fast", "bm");
-  out << "  \"scenes\": " << scenes_json.str() << "\n}\n";
-  std::cout << out.str();
+  results["scenes"] = scenes_json;
+  std::cout << results.dump(2) << "\n";
   if (!json_path.empty())
   {
-    std::ofstream f(json_path);
-    f << out.str();
-    if (!f)
+    try
     {
-      std::cerr << "stereo_eval: cannot write " << json_path << "\n";
+      biovision_common::writeJsonFile(json_path, results);
+    }
+    catch (const biovision_common::FileError& e)
+    {
+      std::cerr << "stereo_eval: " << e.what() << "\n";
       return 1;
     }
   }

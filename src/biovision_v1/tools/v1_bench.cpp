@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
-#include <fstream>
 #include <functional>
 #include <iostream>
 #include <string>
@@ -16,21 +15,13 @@
 #include "biovision_v1/direct_gabor_bank.hpp"
 #include "biovision_v1/input_image.hpp"
 #include "biovision_v1/simple_cell_bank.hpp"
-#include "biovision_common/tool_arguments.hpp"
+#include "biovision_common/tool_options.hpp"
 #include "biovision_v1/v1_pipeline.hpp"
 
 using namespace biovision_v1;
 
 namespace
 {
-const char* kUsage =
-    "usage: v1_bench [--image FILE] [--json FILE] [--threads N] [--repeats N] [--width W --height H]\n"
-    "  Simple + complex cells at 8 orientations x lambda {4, 8, 16} on a real image resized to WxH\n"
-    "  (default 320x240): SimpleCellBank vs a direct cv::filter2D bank with the same kernels, same run,\n"
-    "  same threads (default 2); keypoints on the same scales; max relative error of the fast bank.\n"
-    "  Default image: $BIOVISION_SHARED/data/stereo/middlebury-2001-2006/Art/view1.png\n"
-    "  (BIOVISION_SHARED defaults to ../shared).\n";
-
 double medianMs(int repeats, const std::function<void()>& f)
 {
   f();  // warm-up: plans, caches, thread pool
@@ -49,13 +40,24 @@ double medianMs(int repeats, const std::function<void()>& f)
 int main(int argc, char** argv)
 {
   const char* shared_env = std::getenv("BIOVISION_SHARED");
-  const std::string default_image = std::string(shared_env ? shared_env : "../shared") +
-                                    "/data/stereo/middlebury-2001-2006/Art/view1.png";
-  const biovision_common::ToolArguments args(argc, argv, kUsage, {"--image", "--json", "--threads", "--repeats", "--width", "--height"});
-  const std::string image_path = args.get("--image", default_image), json_path = args.get("--json");
-  const int threads = static_cast<int>(args.number("--threads", 2));
-  const int repeats = std::max(1, static_cast<int>(args.number("--repeats", 30)));
-  const int width = static_cast<int>(args.number("--width", 320)), height = static_cast<int>(args.number("--height", 240));
+  std::string image_path = std::string(shared_env ? shared_env : "../shared") +
+                           "/data/stereo/middlebury-2001-2006/Art/view1.png";
+  std::string json_path;
+  int threads = 2, repeats = 30, width = 320, height = 240;
+  biovision_common::ToolOptions options(
+      "v1_bench",
+      "Simple + complex cells at 8 orientations x lambda {4, 8, 16} on a real image resized to WxH: SimpleCellBank vs\n"
+      "a direct cv::filter2D bank with the same kernels, same run, same threads; keypoints on the same scales; max\n"
+      "relative error of the fast bank. Prints the JSON figures.");
+  CLI::App& app = options.app();
+  app.add_option("--image", image_path, "image; the default is under $BIOVISION_SHARED (else ../shared)");
+  app.add_option("--json", json_path, "also write the figures to this file");
+  app.add_option("--threads", threads, "OpenCV threads, both banks")->check(biovision_common::kPositive);
+  app.add_option("--repeats", repeats, "timed runs (median) after one warm-up")->check(biovision_common::kPositive);
+  app.add_option("--width", width, "width the image is resized to")->check(biovision_common::kPositive);
+  app.add_option("--height", height, "height the image is resized to")->check(biovision_common::kPositive);
+  options.parse(argc, argv);
+
   cv::Mat image = cv::imread(image_path, cv::IMREAD_COLOR);
   if (image.empty())
   {
@@ -90,24 +92,30 @@ int main(int argc, char** argv)
   size_t keypoints = 0;
   const double keypoints_ms = medianMs(repeats, [&] { keypoints = pipeline.process(image).keypoints.size(); });
 
-  const double speedup = ours_ms > 0 ? direct_ms / ours_ms : 0.0;
-  char json[1024];
-  std::snprintf(json, sizeof json,
-                "{\n  \"command\": \"rosrun biovision_v1 v1_bench --threads %d --json FILE\",\n"
-                "  \"image\": \"%s\",\n  \"width\": %d,\n  \"height\": %d,\n  \"threads\": %d,\n"
-                "  \"orientations\": %d,\n  \"wavelengths\": [4, 8, 16],\n"
-                "  \"ours_ms\": %.3f,\n  \"filter2d_ms\": %.3f,\n  \"speedup\": %.2f,\n"
-                "  \"keypoints_ms\": %.3f,\n  \"keypoints\": %zu,\n  \"max_rel_err\": %.3g\n}\n",
-                threads, image_path.substr(image_path.find_last_of('/') + 1).c_str(), width, height, threads,
-                gabor.orientations, ours_ms, direct_ms, speedup, keypoints_ms, keypoints, max_rel_err);
-  std::cout << json;
+  nlohmann::ordered_json figures;
+  figures["command"] = "rosrun biovision_v1 v1_bench --threads " + std::to_string(threads) + " --json FILE";
+  figures["image"] = image_path.substr(image_path.find_last_of('/') + 1);
+  figures["width"] = width;
+  figures["height"] = height;
+  figures["threads"] = threads;
+  figures["orientations"] = gabor.orientations;
+  figures["wavelengths"] = gabor.wavelengths;
+  figures["ours_ms"] = ours_ms;
+  figures["filter2d_ms"] = direct_ms;
+  figures["speedup"] = ours_ms > 0 ? direct_ms / ours_ms : 0.0;
+  figures["keypoints_ms"] = keypoints_ms;
+  figures["keypoints"] = keypoints;
+  figures["max_rel_err"] = max_rel_err;
+  std::cout << figures.dump(2) << "\n";
   if (!json_path.empty())
   {
-    std::ofstream out(json_path);
-    out << json;
-    if (!out)
+    try
     {
-      std::cerr << "v1_bench: cannot write " << json_path << "\n";
+      biovision_common::writeJsonFile(json_path, figures);
+    }
+    catch (const biovision_common::FileError& e)
+    {
+      std::cerr << "v1_bench: " << e.what() << "\n";
       return 1;
     }
   }

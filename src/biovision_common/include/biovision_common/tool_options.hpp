@@ -5,6 +5,8 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "biovision_common/atomic_file.hpp"  // FileError
+
 namespace biovision_common
 {
 /// Command-line options of every evaluation, training and benchmark tool, parsed by CLI11 (Debian's
@@ -12,8 +14,10 @@ namespace biovision_common
 ///
 ///   ToolOptions options("stereo_eval", "Evaluates BioBin against OpenCV on Middlebury scenes.");
 ///   int threads = 2;
-///   options.app().add_option("--threads", threads, "worker threads")->check(CLI::PositiveNumber);
+///   options.app().add_option("--threads", threads, "worker threads")->check(kPositive);
 ///   options.parse(argc, argv);
+///
+/// --help shows each option's default, read from its variable: usage texts need not repeat them.
 class ToolOptions
 {
 public:
@@ -34,6 +38,15 @@ private:
   std::string command_;
 };
 
+/// `->check(kPositive)`, `->check(kNonNegative)` on numeric options: as CLI::PositiveNumber and
+/// CLI::NonNegativeNumber, but the failure reads "--threads: 0 is not > 0" (CLI11 2.1's prints DBL_MAX
+/// in full). A value that is not a number is left to the type check ("Could not convert").
+extern const CLI::Validator kPositive;
+extern const CLI::Validator kNonNegative;
+
 /// Writes `document` to `path` atomically, pretty-printed with a trailing newline. Throws FileError.
 void writeJsonFile(const std::string& path, const nlohmann::json& document);
+/// The same, keys in the order they were added: scripts/bench_report.py lays out docs/benchmarks.md in
+/// the order a tool wrote its figures (nlohmann::json would sort them).
+void writeJsonFile(const std::string& path, const nlohmann::ordered_json& document);
 }  // namespace biovision_common

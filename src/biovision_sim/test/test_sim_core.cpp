@@ -14,6 +14,7 @@
 #include "biovision_sim/kinematic_chain.hpp"
 #include "biovision_sim/scene_renderer.hpp"
 #include "biovision_sim/servo.hpp"
+#include "biovision_sim/simulator_parameters.hpp"
 #include "biovision_sim/stereo_calibration.hpp"
 #include "biovision_sim/world.hpp"
 
@@ -327,6 +328,52 @@ TEST(StereoCalibration, BadInputThrowsNamingTheArgument)
   for (const auto& c : cases)
     EXPECT_NE(invalidArgument(c.first).find(c.second), std::string::npos) << c.second << ": " << invalidArgument(c.first);
   EXPECT_EQ(invalidArgument([] { StereoCalibration::fromFocalLength(1, 1, 1e-3, 0.0); }), "no error");
+}
+
+TEST(SimulatorParameters, DefaultsAndRangeLimitsAreValid)
+{
+  SimulatorParameters p;
+  EXPECT_NE(invalidArgument([&] { p.validate(); }).find("world"), std::string::npos);  // required
+  p.world = "tabletop.yaml";
+  EXPECT_EQ(invalidArgument([&] { p.validate(); }), "no error");
+  p.width = 32;
+  p.height = 24;
+  p.physics_rate = p.camera_rate;
+  p.blur_sigma = 10;
+  p.real_time_factor = 0;
+  p.supersample = 4;
+  EXPECT_EQ(invalidArgument([&] { p.validate(); }), "no error");
+}
+
+TEST(SimulatorParameters, EachBadFieldThrowsNamingIt)
+{
+  using Edit = std::function<void(SimulatorParameters&)>;
+  const std::vector<std::pair<Edit, std::string>> cases = {
+      {[](SimulatorParameters& p) { p.camera_rate = 0; }, "camera_rate"},
+      {[](SimulatorParameters& p) { p.camera_rate = kNaN; }, "camera_rate"},
+      {[](SimulatorParameters& p) { p.physics_rate = 9; }, "physics_rate"},
+      {[](SimulatorParameters& p) { p.width = 31; }, "width"},
+      {[](SimulatorParameters& p) { p.height = 23; }, "height"},
+      {[](SimulatorParameters& p) { p.horizontal_fov_deg = 1; }, "horizontal_fov_deg"},
+      {[](SimulatorParameters& p) { p.horizontal_fov_deg = 179; }, "horizontal_fov_deg"},
+      {[](SimulatorParameters& p) { p.supersample = 0; }, "supersample"},
+      {[](SimulatorParameters& p) { p.supersample = 5; }, "supersample"},
+      {[](SimulatorParameters& p) { p.noise_sigma = -1; }, "noise_sigma"},
+      {[](SimulatorParameters& p) { p.blur_sigma = 10.5; }, "blur_sigma"},
+      {[](SimulatorParameters& p) { p.real_time_factor = -0.5; }, "real_time_factor"},
+      {[](SimulatorParameters& p) { p.start_x = kNaN; }, "start_x"},
+      {[](SimulatorParameters& p) { p.start_y = kInf; }, "start_y"},
+      {[](SimulatorParameters& p) { p.start_yaw = kNaN; }, "start_yaw"},
+      {[](SimulatorParameters& p) { p.servo_speed = 0; }, "servo_speed"},
+  };
+  for (const auto& c : cases)
+  {
+    SimulatorParameters p;
+    p.world = "tabletop.yaml";
+    c.first(p);
+    const std::string message = invalidArgument([&] { p.validate(); });
+    EXPECT_NE(message.find(c.second + " = "), std::string::npos) << c.second << ": " << message;
+  }
 }
 
 int main(int argc, char** argv)

@@ -1,6 +1,12 @@
 // Unit tests of the ROS-free simulator core.
+#include <array>
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <random>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -8,6 +14,8 @@
 #include "biovision_sim/kinematic_chain.hpp"
 #include "biovision_sim/scene_renderer.hpp"
 #include "biovision_sim/servo.hpp"
+#include "biovision_sim/simulator_parameters.hpp"
+#include "biovision_sim/stereo_calibration.hpp"
 #include "biovision_sim/world.hpp"
 
 using namespace biovision_sim;
@@ -41,6 +49,23 @@ World wallWorld(double distance)
   w.addObject(wall);
   return w;
 }
+
+// The message of the std::invalid_argument `f` throws, or "no error".
+std::string invalidArgument(const std::function<void()>& f)
+{
+  try
+  {
+    f();
+  }
+  catch (const std::invalid_argument& e)
+  {
+    return e.what();
+  }
+  return "no error";
+}
+
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+const double kInf = std::numeric_limits<double>::infinity();
 }  // namespace
 
 TEST(SceneRenderer, FrontoParallelPlaneGivesTheAnalyticDisparity)
@@ -233,6 +258,122 @@ TEST(World, ShippedWorldsLoad)
   for (const auto& o : table.objects())
     lookalikes += o.label.rfind("mug_red", 0) == 0;
   EXPECT_EQ(lookalikes, 2);
+}
+
+TEST(StereoCalibration, FocalLengthFollowsTheFieldOfView)
+{
+  // tan(45 deg) = 1: half the width is the focal length.
+  const auto wide = StereoCalibration::fromFieldOfView(320, 240, M_PI / 2, 0.12);
+  EXPECT_NEAR(wide.camera().fx, 160.0, 1e-9);
+  EXPECT_NEAR(wide.left().K[4], 160.0, 1e-9);  // square pixels: fy = fx
+  const auto bumblebee = StereoCalibration::fromFieldOfView(320, 240, 43 * M_PI / 180, 0.12);
+  EXPECT_NEAR(bumblebee.camera().fx, 406.18, 0.01);  // 160 / tan(21.5 deg)
+  const auto given = StereoCalibration::fromFocalLength(640, 480, 500.0, 0.12);
+  EXPECT_EQ(given.left().K[0], 500.0);
+  EXPECT_EQ(given.right().P[0], 500.0);
+}
+
+TEST(StereoCalibration, PrincipalPointIsTheImageCentre)
+{
+  const StereoCalibration::Camera left = StereoCalibration::fromFieldOfView(320, 240, 1.0, 0.12).left();
+  EXPECT_EQ(left.width, 320);
+  EXPECT_EQ(left.height, 240);
+  // Pixel centres at integer coordinates: the centre of 320 columns is 159.5.
+  EXPECT_EQ(left.K[2], 159.5);
+  EXPECT_EQ(left.K[5], 119.5);
+  EXPECT_EQ(left.P[2], 159.5);
+  EXPECT_EQ(left.P[6], 119.5);
+  const std::array<double, 9> k_pattern = {1, 0, 1, 0, 1, 1, 0, 0, 1};  // nonzero entries of K
+  for (size_t i = 0; i < 9; ++i)
+    EXPECT_EQ(left.K[i] != 0.0, k_pattern[i] != 0.0) << "K[" << i << "]";
+  EXPECT_EQ(left.K[8], 1.0);
+  EXPECT_EQ(left.P[10], 1.0);
+}
+
+TEST(StereoCalibration, RightProjectionGivesTheDisparityOfThePair)
+{
+  const double baseline = 0.12;
+  const auto pair = StereoCalibration::fromFieldOfView(320, 240, 43 * M_PI / 180, baseline);
+  const auto left = pair.left(), right = pair.right();
+  EXPECT_EQ(left.P[3], 0.0);
+  EXPECT_LT(right.P[3], 0.0);  // ROS convention: Tx = -fx * B
+  EXPECT_NEAR(right.P[3], -pair.camera().fx * baseline, 1e-12);
+  EXPECT_EQ(pair.baseline(), baseline);
+  for (size_t i : {0u, 1u, 2u, 4u, 5u, 6u, 7u, 8u, 9u, 10u, 11u})
+    EXPECT_EQ(left.P[i], right.P[i]) << "P[" << i << "]";
+  // A point at depth Z in the left optical frame: u_left - u_right = fx * B / Z.
+  const double x = 0.3, y = -0.1, z = 2.0;
+  auto u = [&](const StereoCalibration::Camera& c) { return (c.P[0] * x + c.P[2] * z + c.P[3]) / z; };
+  auto v = [&](const StereoCalibration::Camera& c) { return (c.P[5] * y + c.P[6] * z + c.P[7]) / z; };
+  EXPECT_NEAR(u(left) - u(right), pair.camera().fx * baseline / z, 1e-9);
+  EXPECT_EQ(v(left), v(right));  // rectified: same row
+  EXPECT_EQ(StereoCalibration::fromFieldOfView(320, 240, 1.0, 0.0).right().P[3], 0.0);
+}
+
+TEST(StereoCalibration, BadInputThrowsNamingTheArgument)
+{
+  const std::vector<std::pair<std::function<void()>, std::string>> cases = {
+      {[] { StereoCalibration::fromFieldOfView(0, 240, 1.0, 0.1); }, "width"},
+      {[] { StereoCalibration::fromFieldOfView(320, -1, 1.0, 0.1); }, "height"},
+      {[] { StereoCalibration::fromFieldOfView(320, 240, 0.0, 0.1); }, "horizontal_fov"},
+      {[] { StereoCalibration::fromFieldOfView(320, 240, M_PI, 0.1); }, "horizontal_fov"},
+      {[] { StereoCalibration::fromFieldOfView(320, 240, kNaN, 0.1); }, "horizontal_fov"},
+      {[] { StereoCalibration::fromFieldOfView(320, 240, 1.0, -0.1); }, "baseline"},
+      {[] { StereoCalibration::fromFieldOfView(320, 240, 1.0, kNaN); }, "baseline"},
+      {[] { StereoCalibration::fromFieldOfView(320, 240, 1.0, kInf); }, "baseline"},
+      {[] { StereoCalibration::fromFocalLength(320, 240, 0.0, 0.1); }, "focal_length"},
+      {[] { StereoCalibration::fromFocalLength(320, 240, kInf, 0.1); }, "focal_length"},
+      {[] { StereoCalibration::fromFocalLength(0, 240, 400.0, 0.1); }, "width"},
+  };
+  for (const auto& c : cases)
+    EXPECT_NE(invalidArgument(c.first).find(c.second), std::string::npos) << c.second << ": " << invalidArgument(c.first);
+  EXPECT_EQ(invalidArgument([] { StereoCalibration::fromFocalLength(1, 1, 1e-3, 0.0); }), "no error");
+}
+
+TEST(SimulatorParameters, DefaultsAndRangeLimitsAreValid)
+{
+  SimulatorParameters p;
+  EXPECT_NE(invalidArgument([&] { p.validate(); }).find("world"), std::string::npos);  // required
+  p.world = "tabletop.yaml";
+  EXPECT_EQ(invalidArgument([&] { p.validate(); }), "no error");
+  p.width = 32;
+  p.height = 24;
+  p.physics_rate = p.camera_rate;
+  p.blur_sigma = 10;
+  p.real_time_factor = 0;
+  p.supersample = 4;
+  EXPECT_EQ(invalidArgument([&] { p.validate(); }), "no error");
+}
+
+TEST(SimulatorParameters, EachBadFieldThrowsNamingIt)
+{
+  using Edit = std::function<void(SimulatorParameters&)>;
+  const std::vector<std::pair<Edit, std::string>> cases = {
+      {[](SimulatorParameters& p) { p.camera_rate = 0; }, "camera_rate"},
+      {[](SimulatorParameters& p) { p.camera_rate = kNaN; }, "camera_rate"},
+      {[](SimulatorParameters& p) { p.physics_rate = 9; }, "physics_rate"},
+      {[](SimulatorParameters& p) { p.width = 31; }, "width"},
+      {[](SimulatorParameters& p) { p.height = 23; }, "height"},
+      {[](SimulatorParameters& p) { p.horizontal_fov_deg = 1; }, "horizontal_fov_deg"},
+      {[](SimulatorParameters& p) { p.horizontal_fov_deg = 179; }, "horizontal_fov_deg"},
+      {[](SimulatorParameters& p) { p.supersample = 0; }, "supersample"},
+      {[](SimulatorParameters& p) { p.supersample = 5; }, "supersample"},
+      {[](SimulatorParameters& p) { p.noise_sigma = -1; }, "noise_sigma"},
+      {[](SimulatorParameters& p) { p.blur_sigma = 10.5; }, "blur_sigma"},
+      {[](SimulatorParameters& p) { p.real_time_factor = -0.5; }, "real_time_factor"},
+      {[](SimulatorParameters& p) { p.start_x = kNaN; }, "start_x"},
+      {[](SimulatorParameters& p) { p.start_y = kInf; }, "start_y"},
+      {[](SimulatorParameters& p) { p.start_yaw = kNaN; }, "start_yaw"},
+      {[](SimulatorParameters& p) { p.servo_speed = 0; }, "servo_speed"},
+  };
+  for (const auto& c : cases)
+  {
+    SimulatorParameters p;
+    p.world = "tabletop.yaml";
+    c.first(p);
+    const std::string message = invalidArgument([&] { p.validate(); });
+    EXPECT_NE(message.find(c.second + " = "), std::string::npos) << c.second << ": " << message;
+  }
 }
 
 int main(int argc, char** argv)

@@ -16,7 +16,7 @@ record() {  # name world mode extra-args
   local name=$1 world=$2 mode=$3
   local port=$((21000 + RANDOM % 10000))
   export ROS_MASTER_URI=http://localhost:$port
-  roslaunch -p "$port" "$root/launch/sim.launch" world:="$root/config/worlds/$world" camera_rate:=5 rate:=1.0 \
+  roslaunch -p "$port" biovision_bringup sim.launch world:="$(rospack find biovision_bringup)/config/worlds/$world" camera_rate:=5 rate:=1.0 \
     >"$ROS_HOME/record_$name.log" 2>&1 &
   local launch=$!
   sleep 4

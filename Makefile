@@ -30,8 +30,9 @@ test: build
 bench: build
 	@bash scripts/bench.sh
 
-lint: setup
-	@catkin_lint -W1 --strict src
+# catkin_lint and clang-format on a fresh clone of HEAD, ROS-free core libraries in devel/ (scripts/lint.sh).
+lint: build
+	@bash scripts/lint.sh
 
 clean:
 	rm -rf build devel install $(OUT)

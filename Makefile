@@ -25,7 +25,7 @@ demo: build
 	@bash scripts/demo.sh $(OUT)/demo
 
 test: build
-	@bash scripts/run_tests.sh
+	@CATKIN_ARGS="$(CATKIN_ARGS)" JOBS=$(JOBS) bash scripts/run_tests.sh
 
 bench: build
 	@bash scripts/bench.sh

@@ -25,13 +25,14 @@ demo: build
 	@bash scripts/demo.sh $(OUT)/demo
 
 test: build
-	@bash scripts/run_tests.sh
+	@CATKIN_ARGS="$(CATKIN_ARGS)" JOBS=$(JOBS) bash scripts/run_tests.sh
 
 bench: build
 	@bash scripts/bench.sh
 
-lint: setup
-	@catkin_lint -W1 --strict src
+# catkin_lint and clang-format on a fresh clone of HEAD, ROS-free core libraries in devel/ (scripts/lint.sh).
+lint: build
+	@bash scripts/lint.sh
 
 clean:
 	rm -rf build devel install $(OUT)

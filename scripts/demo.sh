@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# `make demo`: runs launch/demo.launch headless to completion and prints its report.
+# `make demo`: runs biovision_bringup's launch/demo.launch headless to completion and prints its report.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 out=$(realpath -m "${1:-out/demo}")
@@ -12,8 +12,8 @@ rm -f "$out/report.json" "$out/report.md" "$out/fixations.json" "$out/fixations.
 # A private master port so a demo never talks to a roscore the user already runs.
 port=$((20000 + RANDOM % 20000))
 export ROS_MASTER_URI=http://localhost:$port
-echo "demo: roslaunch launch/demo.launch (master on port $port, output in $out)"
-timeout 300 roslaunch -p "$port" launch/demo.launch output_dir:="$out" >"$out/roslaunch.log" 2>&1
+echo "demo: roslaunch biovision_bringup demo.launch (master on port $port, output in $out)"
+timeout 300 roslaunch -p "$port" biovision_bringup demo.launch output_dir:="$out" >"$out/roslaunch.log" 2>&1
 rc=$?
 if [[ ! -f "$out/report.json" ]]; then
   echo "demo: no report written (roslaunch exit $rc); last lines of $out/roslaunch.log:"

@@ -6,7 +6,7 @@ set -euo pipefail
 
 PACKAGES=(
   # build tools and the ROS 1 core from Debian (no /opt/ros)
-  build-essential cmake catkin catkin-lint python3-catkin-pkg python3-empy
+  build-essential cmake catkin catkin-lint python3-catkin-pkg python3-empy clang-format
   ros-base-dev ros-core-dev rosbash rosout python3-roslaunch python3-rostopic python3-rosnode
   python3-rosparam python3-rosmsg python3-rosservice python3-rosbag python3-rostest librostest-dev
   python3-rosunit

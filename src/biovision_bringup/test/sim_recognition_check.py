@@ -39,4 +39,4 @@ class SimRecognition(unittest.TestCase):
 
 if __name__ == "__main__":
     rospy.init_node("sim_recognition_check")
-    rostest.rosrun("biovision_recognition", "sim_recognition", SimRecognition, sys.argv)
+    rostest.rosrun("biovision_bringup", "sim_recognition", SimRecognition, sys.argv)

@@ -28,6 +28,14 @@ def flatten(prefix, value, rows):
         rows.append((prefix, value))
 
 
+def workspace_relative(text):
+    """Docs name data relative to the workspace (../shared/...), never this machine's absolute path."""
+    shared = os.environ.get("BIOVISION_SHARED")
+    if shared:
+        text = text.replace(os.path.realpath(shared), "../shared").replace(shared.rstrip("/"), "../shared")
+    return text
+
+
 def main(folder, target):
     files = sorted(pathlib.Path(folder).glob("*.json"))
     lines = ["# Benchmarks", "",
@@ -38,7 +46,7 @@ def main(folder, target):
     if not files:
         lines.append("No benchmark has been registered yet (scripts/benchmarks.list).")
     for path in files:
-        data = json.loads(path.read_text())
+        data = json.loads(workspace_relative(path.read_text()))
         lines += [f"## {path.stem}", ""]
         if "command" in data:
             lines += [f"Command: `{data.pop('command')}`", ""]

@@ -79,6 +79,13 @@ cv::Mat wrap(const sensor_msgs::Image& m, const Format& f)
   if (m.step < row_bytes)
     throw ImageConversionError(what + ": step " + std::to_string(m.step) + " is less than width x bytes per pixel (" +
                                std::to_string(row_bytes) + ")");
+  // cv::Mat refuses such a step with a bare OpenCV assertion: say what is wrong with the message instead.
+  if (m.step % CV_ELEM_SIZE1(f.type) != 0)
+    throw ImageConversionError(what + ": step " + std::to_string(m.step) + " is not a multiple of the " +
+                               std::to_string(CV_ELEM_SIZE1(f.type)) + "-byte channel size");
+  // UYVY pixel pairs share U and V: an odd width leaves the last column without chroma (OpenCV leaves it unset).
+  if (f.layout == Layout::Uyvy && m.width % 2 != 0)
+    throw ImageConversionError(what + ": yuv422 needs an even width (pixel pairs share U and V)");
   if (m.data.size() < size_t(m.step) * m.height)
     throw ImageConversionError(what + ": data holds " + std::to_string(m.data.size()) + " bytes, step x height needs " +
                                std::to_string(size_t(m.step) * m.height));

@@ -172,6 +172,16 @@ TEST(ImageMessageConverter, BrokenMessagesAreRefusedNamingTheProblem)
   expectErrorMentions(m, "measurement");
   EXPECT_EQ(ImageMessageConverter::toCv(m, Depth::Keep).type(), CV_32FC1);
   EXPECT_THROW(ImageMessageConverter::toFloat32(message(colourBars(), "bgr8")), ImageConversionError);
+  // A step that is not a whole number of channels: cv::Mat would throw a bare cv::Exception.
+  m = message(cv::Mat(4, 6, CV_16U, cv::Scalar(1)), "mono16", 1);
+  expectErrorMentions(m, "step 13 is not a multiple of the 2-byte channel size");
+  m = message(cv::Mat(4, 6, CV_16UC3, cv::Scalar(1, 2, 3)), "bgr16", 3);
+  expectErrorMentions(m, "step 39 is not a multiple of the 2-byte channel size");
+  m = message(cv::Mat(4, 6, CV_32F, cv::Scalar(1.f)), "32FC1", 2);
+  EXPECT_THROW(ImageMessageConverter::toFloat32(m), ImageConversionError);
+  // yuv422 pixel pairs share chroma: an odd width is a broken message, not a picture with an unset column.
+  m = message(cv::Mat(4, 7, CV_8UC2, cv::Scalar(128, 200)), "yuv422");
+  expectErrorMentions(m, "yuv422 needs an even width");
 }
 
 TEST(ImageMessageConverter, YuvAndTheEncodingListAgree)

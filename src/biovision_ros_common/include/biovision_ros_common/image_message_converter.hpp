@@ -25,7 +25,8 @@ struct ImageConversionError : std::invalid_argument
 ///   raw:    bayer_{rggb,bggr,gbrg,grbg}{8,16} (debayered, edge-aware), yuv422 (UYVY) -> 3 channels, BGR
 ///   float:  32FC1 (only with Depth::Keep, or through toFloat32)
 /// Anything else throws, listing these. Checks, in order, each throwing ImageConversionError: width or
-/// height 0; more than kMaxPixels pixels; step < width × bytes per pixel; data shorter than step × height.
+/// height 0; more than kMaxPixels pixels; step < width × bytes per pixel; step not a whole number of
+/// channels; yuv422 of odd width; data shorter than step × height.
 /// Rows may be padded (step > width × bytes per pixel): the padding is skipped. Multi-byte pixels with
 /// is_bigendian different from this machine's are byte-swapped. When no conversion is needed the result
 /// shares the message's memory (zero copy): keep the message alive while using it.

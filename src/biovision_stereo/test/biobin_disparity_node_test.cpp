@@ -80,7 +80,7 @@ public:
     left_pub_.publish(cv_bridge::CvImage(h, "bgr8", left).toImageMsg());
     right_pub_.publish(cv_bridge::CvImage(h, "bgr8", right).toImageMsg());
     left_info_pub_.publish(info(stamp, false, fx));
-    auto ri = info(stamp, true, fx);
+    auto ri = info(stamp, true, fx + right_fx_offset_);
     ri.header.frame_id = right_info_frame;
     right_info_pub_.publish(ri);
   }
@@ -106,6 +106,7 @@ public:
   stereo_msgs::DisparityImageConstPtr disparity_;
   sensor_msgs::PointCloud2ConstPtr points_;
   std::atomic<bool> saw_error_{false};
+  double right_fx_offset_ = 0.0;  ///< right camera_info's fx minus the left's
 };
 
 TEST_F(BioBinDisparityNodeTest, PlaneGivesItsDisparityAndPointCloud2ConsumesIt)
@@ -174,6 +175,39 @@ TEST_F(BioBinDisparityNodeTest, BadCameraInfoIsReportedAndTheNodeKeepsWorking)
     std::lock_guard<std::mutex> lock(mutex_);
     return bool(disparity_);
   }, 30.0, kFx, "stereo_right_optical")) << "no disparity when the right camera_info uses its own frame";
+}
+TEST_F(BioBinDisparityNodeTest, LeftAndRightFocalLengthsThatDifferAreRefusedWithoutAborting)
+{
+  // image_geometry's StereoCameraModel asserts left fx == right fx (also fy, cy): the node must refuse the
+  // pair with an ERROR naming it, not abort, and match again once the pair is consistent.
+  ros::Subscriber ds = nh_.subscribe("stereo/disparity", 2, &BioBinDisparityNodeTest::onDisparity,
+                                     static_cast<BioBinDisparityNodeTest*>(this));
+  std::atomic<bool> named{false};
+  ros::Subscriber diag = nh_.subscribe<diagnostic_msgs::DiagnosticArray>("/diagnostics", 20, [&](const diagnostic_msgs::DiagnosticArrayConstPtr& m) {
+    for (const auto& s : m->status)
+      if (s.name.find("BioBin disparity") != std::string::npos && s.level == diagnostic_msgs::DiagnosticStatus::ERROR &&
+          s.message.find("not a rectified pair") != std::string::npos)
+        named = true;
+  });
+  ASSERT_TRUE(publishUntil([&] {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return bool(disparity_);
+  }, 60.0)) << "no disparity from a good pair";
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    disparity_.reset();
+  }
+  right_fx_offset_ = 1.0;
+  EXPECT_TRUE(publishUntil([&] { return named.load(); }, 30.0)) << "no ERROR naming the inconsistent pair";
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    EXPECT_FALSE(disparity_) << "a disparity was published from an inconsistent pair";
+  }
+  right_fx_offset_ = 0.0;
+  EXPECT_TRUE(publishUntil([&] {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return bool(disparity_);
+  }, 30.0)) << "no disparity after the inconsistent pair: did the node abort?";
 }
 }  // namespace
 

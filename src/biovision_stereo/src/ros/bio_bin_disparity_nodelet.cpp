@@ -151,6 +151,13 @@ void BioBinDisparityNodelet::pairCallback(const sensor_msgs::ImageConstPtr& left
       throw std::invalid_argument("left " + std::to_string(left->width) + "x" + std::to_string(left->height) + " " +
                                   left->encoding + " and right " + std::to_string(right->width) + "x" +
                                   std::to_string(right->height) + " " + right->encoding + " differ");
+    // image_geometry also asserts (aborts the whole process) unless the two projections share fx, fy and cy,
+    // as a rectified pair does: refuse any other pair here.
+    if (left_info->P[0] != right_info->P[0] || left_info->P[5] != right_info->P[5] || left_info->P[6] != right_info->P[6])
+      throw std::invalid_argument("left and right camera_info are not a rectified pair: fx " + std::to_string(left_info->P[0]) +
+                                  "/" + std::to_string(right_info->P[0]) + ", fy " + std::to_string(left_info->P[5]) + "/" +
+                                  std::to_string(right_info->P[5]) + ", cy " + std::to_string(left_info->P[6]) + "/" +
+                                  std::to_string(right_info->P[6]) + " (left/right P) must be equal");
     // image_geometry asserts (aborts) when the two frame ids differ; drivers disagree on that
     // convention, and only fx and the baseline are used here, so give the right info the left frame.
     if (right_info->header.frame_id != left_info->header.frame_id)

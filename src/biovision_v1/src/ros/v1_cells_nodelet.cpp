@@ -38,6 +38,7 @@ void V1CellsNodelet::onInitNodelet()
   options.details = [this](diagnostic_updater::DiagnosticStatusWrapper& s) { details(s); };
   diagnostics_.init(nh, pnh, getName(), options);
 
+  input_topic_ = nh.resolveName("image");  // not image_sub_.getTopic(): (un)subscribe() reassigns it on another thread
   keypoints_pub_ = advertise<biovision_msgs::KeypointArray>(nh, "keypoints", 5);
   debug_pub_ = advertiseImage(*it_, "debug_image", 1);
 }
@@ -88,7 +89,7 @@ void V1CellsNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
     catch (const std::exception& e)  // ImageConversionError, invalid_argument, cv::Exception
     {
       diagnostics_.health().reportError(getName(), "dropping image " + std::to_string(msg->width) + "x" + std::to_string(msg->height) +
-                                         " '" + msg->encoding + "' from " + image_sub_.getTopic() + ": " + e.what());
+                                         " '" + msg->encoding + "' from " + input_topic_ + ": " + e.what());
       return;
     }
     last_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

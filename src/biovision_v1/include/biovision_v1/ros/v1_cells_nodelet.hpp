@@ -39,6 +39,7 @@ private:
 
   std::unique_ptr<image_transport::ImageTransport> it_;
   image_transport::Subscriber image_sub_;
+  std::string input_topic_;
   image_transport::Publisher debug_pub_;
   ros::Publisher keypoints_pub_;
 

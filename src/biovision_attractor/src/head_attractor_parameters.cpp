@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "biovision_attractor/forcelets.hpp"
+
 namespace biovision_attractor
 {
 void HeadAttractorParameters::validate() const
@@ -36,9 +38,13 @@ void HeadAttractorParameters::validate() const
     fail("need tilt_lower < tilt_upper and default_tilt between them");
 }
 
+double HeadAttractorParameters::sectionAngle(int i) const
+{
+  return sectorCentre(i, sections, field);
+}
+
 int HeadAttractorParameters::sectionOf(double angle) const
 {
-  const int i = static_cast<int>(std::floor((angle + field / 2) / (field / sections)));
-  return std::clamp(i, 0, sections - 1);
+  return sectorOf(angle, sections, field);
 }
 }  // namespace biovision_attractor

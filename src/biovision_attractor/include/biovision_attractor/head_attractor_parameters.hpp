@@ -35,7 +35,9 @@ struct HeadAttractorParameters
 
   /// Throws std::invalid_argument naming the offending field.
   void validate() const;
-  double sectionAngle(int i) const { return -field / 2 + field / sections * (i + 0.5); }
+  /// Centre of section i [rad] (sectorCentre()).
+  double sectionAngle(int i) const;
+  /// The section containing `angle` [rad]; beyond the field: the end sections; NaN: section 0 (sectorOf()).
   int sectionOf(double angle) const;
 };
 }  // namespace biovision_attractor

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "biovision_attractor/forcelets.hpp"
+
 namespace biovision_attractor
 {
 void HeadAttractorParameters::validate() const
@@ -36,9 +38,50 @@ void HeadAttractorParameters::validate() const
     fail("need tilt_lower < tilt_upper and default_tilt between them");
 }
 
+const std::vector<std::pair<std::string, double HeadAttractorParameters::*>>& HeadAttractorParameters::namedDoubles()
+{
+  using P = HeadAttractorParameters;
+  static const std::vector<std::pair<std::string, double P::*>> names = {
+      {"alpha_attraction", &P::alpha_attraction},
+      {"alpha_repulsion", &P::alpha_repulsion},
+      {"beta_attraction", &P::beta_attraction},
+      {"beta_repulsion", &P::beta_repulsion},
+      {"epsilon_attraction", &P::epsilon_attraction},
+      {"epsilon_repulsion", &P::epsilon_repulsion},
+      {"wall_epsilon", &P::wall_epsilon},
+      {"repulsion_step", &P::repulsion_step},
+      {"idle_timeout", &P::idle_timeout},
+      {"gain", &P::gain},
+      {"max_rate", &P::max_rate},
+      {"memory_decay", &P::memory_decay},
+      {"smoothing", &P::smoothing},
+      {"min_saliency", &P::min_saliency},
+      {"selection_bonus", &P::selection_bonus},
+      {"habituation_time", &P::habituation_time},
+      {"recovery_time", &P::recovery_time},
+      {"fixation_radius", &P::fixation_radius},
+      {"saccade_angle", &P::saccade_angle},
+      {"look_ahead_period", &P::look_ahead_period},
+      {"look_ahead_duration", &P::look_ahead_duration},
+      {"tilt", &P::default_tilt},
+  };
+  return names;
+}
+
+const std::vector<std::pair<std::string, bool HeadAttractorParameters::*>>& HeadAttractorParameters::namedBools()
+{
+  static const std::vector<std::pair<std::string, bool HeadAttractorParameters::*>> names = {
+      {"tilt_dynamics", &HeadAttractorParameters::tilt_dynamics}};
+  return names;
+}
+
+double HeadAttractorParameters::sectionAngle(int i) const
+{
+  return sectorCentre(i, sections, field);
+}
+
 int HeadAttractorParameters::sectionOf(double angle) const
 {
-  const int i = static_cast<int>(std::floor((angle + field / 2) / (field / sections)));
-  return std::clamp(i, 0, sections - 1);
+  return sectorOf(angle, sections, field);
 }
 }  // namespace biovision_attractor

@@ -30,6 +30,11 @@ struct SeenRegion
 /// the head fixates habituates (its attraction fades over habituation_time and recovers when it is not
 /// fixated): with the thesis' spatial boredom alone, a head between two sections alternates boredom
 /// between them and never leaves (measured on two targets at +-15 deg).
+///
+/// The forcelets, softmax weights and selection are those of forcelets.hpp (shared with the base's heading
+/// controller). update() runs, in order: sanitise the inputs, remember saliency per section, inhibition of
+/// return (boredom), the idle clock, habituation, the behaviour's attraction, softmax weights and selection,
+/// the forcelet sum (rate), the pan command (with saccades), the tilt command.
 class HeadAttractor
 {
 public:
@@ -53,12 +58,25 @@ public:
     std::vector<double> attraction, repulsion, forcelet;  ///< per section
   };
 
+  /// Throws std::invalid_argument (from HeadAttractorParameters::validate) on bad parameters.
   explicit HeadAttractor(const HeadAttractorParameters& parameters);
 
-  /// One control step at time t [s] with the head at `pan` [rad]; `regions` are this frame's (may be
-  /// empty). dt: time since the previous step [s].
+  /// One control step at time t [s] with the head at `pan` [rad, + = left] and `tilt` [rad, + = down];
+  /// `regions` are this frame's (may be empty). dt: time since the previous step [s]; half_fov: half the
+  /// camera's horizontal field of view [rad]. Never throws: a non-finite pan counts as 0, a non-finite
+  /// tilt as default_tilt, a non-finite dt as 0; regions with a non-finite pan or peak are ignored.
   Output update(const std::vector<SeenRegion>& regions, double pan, double t, double dt, double half_fov,
                 double tilt = 0.0);
+
+  /// Forgets everything learnt over time -- remembered saliency, boredom (inhibition of return),
+  /// habituation, the selected target, the idle clock -- as at construction; keeps the parameters and the
+  /// behaviour. For a restart of time (a looped bag, a restarted simulator): the idle clock would otherwise
+  /// wait for a time that never comes again.
+  void reset();
+
+  /// Replaces the parameters, keeping the state (a different sections or field resets it). Throws
+  /// std::invalid_argument on bad parameters, leaving the previous ones in place.
+  void setParameters(const HeadAttractorParameters& parameters);
 
   void setBehaviour(Behaviour b, double track_angle = 0.0);
   Behaviour behaviour() const { return behaviour_; }
@@ -68,6 +86,28 @@ public:
   std::vector<double> sectionAngles() const;
 
 private:
+  /// update()'s inputs made safe (see update()).
+  struct StepInput
+  {
+    double pan, tilt, t, dt, half_fov;
+  };
+  /// This frame's strongest region per section: its peak (0 = none), direction and tilt.
+  struct SeenPerSection
+  {
+    std::vector<double> peak, direction, tilt;
+  };
+
+  StepInput sanitise(double pan, double tilt, double t, double dt, double half_fov) const;
+  SeenPerSection strongestPerSection(const std::vector<SeenRegion>& regions) const;
+  void rememberSaliency(const SeenPerSection& seen, const StepInput& in);
+  void inhibitReturn(double pan);
+  void updateIdleClock(double t);
+  void habituate(const StepInput& in);
+  std::vector<double> behaviourAttraction(double t);
+  double panRate(double pan, const std::vector<double>& weights, Output& out) const;
+  void commandPan(const StepInput& in, Output& out) const;
+  void commandTilt(const StepInput& in, Output& out) const;
+
   HeadAttractorParameters p_;
   Behaviour behaviour_ = Behaviour::kExplore;
   double track_angle_ = 0.0;
@@ -75,8 +115,8 @@ private:
   std::vector<double> direction_;  // where in each section its strongest region was seen [rad]
   std::vector<double> tilt_;       // and at which tilt [rad]
   std::vector<double> repulsion_;  // A_r in [0, 1]; 1 = no repulsion
-  double last_salient_time_ = -1e300;
-  int selected_ = -1;  // the attractor the head is going to (kept while it stays competitive)
+  double last_salient_time_;       // [s] kNever until the first update
+  int selected_;  // the attractor the head is going to (kept while it stays competitive), -1 = none
   std::vector<double> habituation_;  // per section, 0..0.9: how much a fixated target has lost its pull
 };
 }  // namespace biovision_attractor

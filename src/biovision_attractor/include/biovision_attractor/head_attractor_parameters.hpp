@@ -1,5 +1,9 @@
 #pragma once
 
+#include <string>
+#include <utility>
+#include <vector>
+
 namespace biovision_attractor
 {
 /// Constants of the head's attractor dynamics (thesis §4.7); every one is a parameter.
@@ -35,7 +39,15 @@ struct HeadAttractorParameters
 
   /// Throws std::invalid_argument naming the offending field.
   void validate() const;
-  double sectionAngle(int i) const { return -field / 2 + field / sections * (i + 0.5); }
+
+  /// The tunable fields by the name the head controller knows them under (its private ROS parameters,
+  /// config/head_controller.yaml, cfg/HeadController.cfg); default_tilt is "tilt". sections, field and the
+  /// joint limits (the URDF's) are not parameters of the node.
+  static const std::vector<std::pair<std::string, double HeadAttractorParameters::*>>& namedDoubles();
+  static const std::vector<std::pair<std::string, bool HeadAttractorParameters::*>>& namedBools();
+  /// Centre of section i [rad] (sectorCentre()).
+  double sectionAngle(int i) const;
+  /// The section containing `angle` [rad]; beyond the field: the end sections; NaN: section 0 (sectorOf()).
   int sectionOf(double angle) const;
 };
 }  // namespace biovision_attractor

@@ -241,7 +241,7 @@ double HeadAttractor::panRate(double pan, const std::vector<double>& weights, Ou
     // Attractors sit where their region was seen, repellers at the section (where the head dwelt).
     const double strength = repulsionStrength(repulsion_[i], p_.beta_repulsion);
     const double fa = attraction(pan, direction_[i], p_.alpha_attraction, weights[i], p_.epsilon_attraction);
-    const double fr = repulsion(pan, p_.sectionAngle(i), p_.alpha_repulsion, strength, p_.epsilon_repulsion);
+    const double fr = repulsion(pan, repellerAngle(i), p_.alpha_repulsion, strength, p_.epsilon_repulsion);
     out.forcelet[i] = p_.gain * (fa + fr);
     out.repulsion[i] = strength;
     rate += out.forcelet[i];
@@ -253,6 +253,19 @@ double HeadAttractor::panRate(double pan, const std::vector<double>& weights, Ou
   if (behaviour_ == Behaviour::kHold || !std::isfinite(rate))
     rate = 0.0;
   return std::clamp(rate, -p_.max_rate, p_.max_rate);
+}
+
+double HeadAttractor::repellerAngle(int i) const
+{
+  // The section holding a pan limit is inhibited from the limit (or beyond), never from its centre: a
+  // repeller at the centre pushes a head dwelling between it and the limit into the limit, where the
+  // target in view keeps it for good (seen in the closed-loop rostest: pinned at -90 deg on one object).
+  double angle = p_.sectionAngle(i);
+  if (p_.sectionOf(p_.pan_lower) == i)
+    angle = std::min(angle, p_.pan_lower);
+  if (p_.sectionOf(p_.pan_upper) == i)
+    angle = std::max(angle, p_.pan_upper);
+  return angle;
 }
 
 void HeadAttractor::commandPan(const StepInput& in, Output& out) const

@@ -104,6 +104,8 @@ private:
   void updateIdleClock(double t);
   void habituate(const StepInput& in);
   std::vector<double> behaviourAttraction(double t);
+  /// Where section i's inhibition-of-return repeller sits [rad]: its centre, or the pan limit it holds.
+  double repellerAngle(int i) const;
   double panRate(double pan, const std::vector<double>& weights, Output& out) const;
   void commandPan(const StepInput& in, Output& out) const;
   void commandTilt(const StepInput& in, Output& out) const;

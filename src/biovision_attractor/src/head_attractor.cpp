@@ -74,10 +74,14 @@ const char* HeadAttractor::name(Behaviour b)
 {
   switch (b)
   {
-    case Behaviour::kExplore: return "explore";
-    case Behaviour::kTrack: return "track";
-    case Behaviour::kLookAhead: return "look_ahead";
-    case Behaviour::kHold: return "hold";
+    case Behaviour::kExplore:
+      return "explore";
+    case Behaviour::kTrack:
+      return "track";
+    case Behaviour::kLookAhead:
+      return "look_ahead";
+    case Behaviour::kHold:
+      return "hold";
   }
   return "?";
 }
@@ -147,7 +151,8 @@ void HeadAttractor::rememberSaliency(const SeenPerSection& seen, const StepInput
     saliency_[i] = p_.smoothing * before + (1 - p_.smoothing) * seen.peak[i];
     if (seen.peak[i] > 0)
     {
-      direction_[i] = before > 0 ? p_.smoothing * direction_[i] + (1 - p_.smoothing) * seen.direction[i] : seen.direction[i];
+      direction_[i] = before > 0 ? p_.smoothing * direction_[i] + (1 - p_.smoothing) * seen.direction[i]
+                                 : seen.direction[i];
       tilt_[i] = before > 0 ? p_.smoothing * tilt_[i] + (1 - p_.smoothing) * seen.tilt[i] : seen.tilt[i];
     }
     else if (saliency_[i] < p_.min_saliency)
@@ -182,8 +187,8 @@ void HeadAttractor::habituate(const StepInput& in)
   for (int i = 0; i < p_.sections; ++i)
   {
     const bool fixated = i == selected_ && std::abs(direction_[i] - in.pan) < p_.fixation_radius;
-    habituation_[i] =
-        std::clamp(habituation_[i] + (fixated ? in.dt / p_.habituation_time : -in.dt / p_.recovery_time), 0.0, 0.9);
+    habituation_[i] = std::clamp(habituation_[i] + (fixated ? in.dt / p_.habituation_time : -in.dt / p_.recovery_time),
+                                 0.0, 0.9);
   }
 }
 

@@ -31,9 +31,9 @@ namespace
 {
 // test/head_limits.urdf
 constexpr double kPanLower = -0.8, kPanUpper = 0.8, kTiltLower = -0.2, kTiltUpper = 0.4;
-constexpr double kHalfFov = 0.375;       // [rad] the YAML's horizontal_fov / 2
-constexpr double kClockStep = 0.02;      // [s] of sim time per 10 ms of wall time: 2x real time
-constexpr double kServoSpeed = 3.0;      // [rad/s]
+constexpr double kHalfFov = 0.375;   // [rad] the YAML's horizontal_fov / 2
+constexpr double kClockStep = 0.02;  // [s] of sim time per 10 ms of wall time: 2x real time
+constexpr double kServoSpeed = 3.0;  // [rad/s]
 const char* const kStatus = "head controller";
 
 struct Object
@@ -51,12 +51,14 @@ public:
     clock_pub_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
     joints_pub_ = nh.advertise<sensor_msgs::JointState>("joint_states", 10);
     regions_pub_ = nh.advertise<biovision_msgs::SalientRegionArray>("saliency/regions", 10);
-    pan_sub_ = nh.subscribe<std_msgs::Float64>("head_pan_joint/command", 50, [this](const std_msgs::Float64ConstPtr& m) {
-      onCommand(m->data, pan_command_, pan_commands, kPanLower, kPanUpper);
-    });
-    tilt_sub_ = nh.subscribe<std_msgs::Float64>("head_tilt_joint/command", 50, [this](const std_msgs::Float64ConstPtr& m) {
-      onCommand(m->data, tilt_command_, tilt_commands, kTiltLower, kTiltUpper);
-    });
+    pan_sub_ = nh.subscribe<std_msgs::Float64>("head_pan_joint/command", 50,
+                                               [this](const std_msgs::Float64ConstPtr& m) {
+                                                 onCommand(m->data, pan_command_, pan_commands, kPanLower, kPanUpper);
+                                               });
+    tilt_sub_ = nh.subscribe<std_msgs::Float64>(
+        "head_tilt_joint/command", 50, [this](const std_msgs::Float64ConstPtr& m) {
+          onCommand(m->data, tilt_command_, tilt_commands, kTiltLower, kTiltUpper);
+        });
     thread_ = std::thread([this] { run(); });
   }
   ~Rig()
@@ -229,11 +231,13 @@ TEST(HeadControllerNode, HoldsWithoutJointStatesThenCommandsWithinTheUrdfLimits)
   TopicProbe<biovision_msgs::AttractorState> state(nh, "attractor/head");
   EXPECT_TRUE(state.waitForCount(5, 10.0)) << "no attractor/head";
   double lowest = 10, highest = -10;
-  waitFor([&] {
-    lowest = std::min(lowest, rig->pan.load());
-    highest = std::max(highest, rig->pan.load());
-    return false;
-  }, 10.0);
+  waitFor(
+      [&] {
+        lowest = std::min(lowest, rig->pan.load());
+        highest = std::max(highest, rig->pan.load());
+        return false;
+      },
+      10.0);
   EXPECT_GT(highest - lowest, 0.3) << "the head did not explore";
   // Tracking an object beyond the pan and tilt limits (put in view while holding): the commands stop at the
   // URDF's limits (not the defaults, +-1.5708 and +-0.7854).
@@ -279,7 +283,8 @@ TEST(HeadControllerNode, SetModeSwitchesBehavioursAndRefusesBadRequests)
   EXPECT_TRUE(callSetMode("explore"));
   EXPECT_TRUE(behaviour_becomes("explore"));
   TopicProbe<diagnostic_msgs::DiagnosticArray> diagnostics(nh, "/diagnostics");
-  EXPECT_TRUE(waitFor([&] { return latestValue(diagnostics, "mode") == "explore"; }, 5.0)) << "diagnostics show the mode";
+  EXPECT_TRUE(waitFor([&] { return latestValue(diagnostics, "mode") == "explore"; }, 5.0))
+      << "diagnostics show the mode";
 }
 
 TEST(HeadControllerNode, NanRegionsGiveAnErrorAndNoNanCommand)
@@ -302,10 +307,13 @@ TEST(HeadControllerNode, NanRegionsGiveAnErrorAndNoNanCommand)
   sensor_msgs::JointState bad;
   bad.name = {"head_pan_joint", "head_tilt_joint"};
   bad.position = {0.1};
-  EXPECT_TRUE(waitFor([&] {
-    joints.publish(bad);
-    return diagnostics.lastMessage().find("names and 1 positions") != std::string::npos;
-  }, 10.0)) << diagnostics.lastMessage();
+  EXPECT_TRUE(waitFor(
+      [&] {
+        joints.publish(bad);
+        return diagnostics.lastMessage().find("names and 1 positions") != std::string::npos;
+      },
+      10.0))
+      << diagnostics.lastMessage();
   EXPECT_EQ(rig->beyond_limits.load(), 0);
 }
 

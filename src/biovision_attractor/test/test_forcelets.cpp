@@ -80,7 +80,8 @@ TEST(Forcelets, RepulsionPushesAwayToTheSideItIsOn)
   EXPECT_GT(repulsion(psi + h, psi, alpha, strength, epsilon) - repulsion(psi - h, psi, alpha, strength, epsilon), 0.0)
       << "an unstable fixed point";
   EXPECT_EQ(repulsion(psi + 0.1, psi, alpha, 0.0, epsilon), 0.0) << "strength 0: no repulsion";
-  EXPECT_DOUBLE_EQ(repulsion(0.3, psi, alpha, strength, epsilon), -repulsion(2 * psi - 0.3, psi, alpha, strength, epsilon));
+  EXPECT_DOUBLE_EQ(repulsion(0.3, psi, alpha, strength, epsilon),
+                   -repulsion(2 * psi - 0.3, psi, alpha, strength, epsilon));
 }
 
 TEST(Forcelets, SineAttractionHasOneStableAndOneUnstableZero)

@@ -11,9 +11,9 @@ using namespace biovision_attractor;
 
 namespace
 {
-constexpr double kDt = 0.1;                   // control period [s]
+constexpr double kDt = 0.1;  // control period [s]
 constexpr double kHalfFov = 21.5 * M_PI / 180;
-constexpr double kServoSpeed = 3.0;           // [rad/s]
+constexpr double kServoSpeed = 3.0;  // [rad/s]
 
 // Objects at fixed head-centred directions; those within the field of view are "seen".
 std::vector<SeenRegion> look(const std::vector<double>& objects, double pan)
@@ -101,8 +101,10 @@ TEST(HeadAttractor, NeverBeyondTheLimitsUnderAnyInput)
       regions.push_back({k % 211 == 0 ? NAN : angle(rng), 0.0, k % 97 == 0 ? NAN : unit(rng) * 3 - 1, 500.0});
     if (k % 1000 == 0)
     {
-      static const HeadAttractor::Behaviour all[] = {HeadAttractor::Behaviour::kExplore, HeadAttractor::Behaviour::kTrack,
-                                                     HeadAttractor::Behaviour::kLookAhead, HeadAttractor::Behaviour::kHold};
+      static const HeadAttractor::Behaviour all[] = {HeadAttractor::Behaviour::kExplore,
+                                                     HeadAttractor::Behaviour::kTrack,
+                                                     HeadAttractor::Behaviour::kLookAhead,
+                                                     HeadAttractor::Behaviour::kHold};
       head.setBehaviour(all[(k / 1000) % 4], angle(rng));
     }
     const double dt = k % 331 == 0 ? NAN : kDt * unit(rng) * 3;

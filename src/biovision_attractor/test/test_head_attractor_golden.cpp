@@ -21,11 +21,11 @@ using namespace biovision_attractor;
 
 namespace
 {
-constexpr double kDt = 0.1;                      // control period [s]
+constexpr double kDt = 0.1;                     // control period [s]
 constexpr double kHalfFov = 21.5 * M_PI / 180;  // [rad]
-constexpr double kServoStep = 0.3;               // [rad] per period (3 rad/s)
-constexpr int kSteps = 400;                      // per scenario (40 s)
-constexpr int kSampleEvery = 20;                 // steps between recorded samples
+constexpr double kServoStep = 0.3;              // [rad] per period (3 rad/s)
+constexpr int kSteps = 400;                     // per scenario (40 s)
+constexpr int kSampleEvery = 20;                // steps between recorded samples
 constexpr double kTolerance = 1e-9;
 
 double deg(double d)
@@ -76,12 +76,12 @@ struct Sample
 
 enum class Scenario
 {
-  kExplore,     // four objects of different saliency and tilt: selection, habituation, saccades, tilt
-  kIdle,        // objects vanish after 8 s: memory fade and the idle timeout
-  kTrack,       // a target moving sinusoidally, tracked
-  kLookAhead,   // look_ahead with a salient object far to the side
-  kModes,       // explore -> hold -> track -> explore (repulsion reset) -> look_ahead
-  kBadInput,    // NaN and out-of-range regions, pan, tilt and dt; random frame times
+  kExplore,    // four objects of different saliency and tilt: selection, habituation, saccades, tilt
+  kIdle,       // objects vanish after 8 s: memory fade and the idle timeout
+  kTrack,      // a target moving sinusoidally, tracked
+  kLookAhead,  // look_ahead with a salient object far to the side
+  kModes,      // explore -> hold -> track -> explore (repulsion reset) -> look_ahead
+  kBadInput,   // NaN and out-of-range regions, pan, tilt and dt; random frame times
 };
 
 std::vector<Sample> run(Scenario scenario)
@@ -90,8 +90,8 @@ std::vector<Sample> run(Scenario scenario)
   HeadAttractor head(p);
   Lcg rng(12345);
   double pan = 0.0, tilt = p.default_tilt, t = 0.0;
-  const std::vector<Object> table = {{deg(-60), deg(20), 0.9}, {deg(-15), deg(30), 0.6}, {deg(15), deg(10), 0.8},
-                                     {deg(45), deg(25), 0.7}};
+  const std::vector<Object> table = {
+      {deg(-60), deg(20), 0.9}, {deg(-15), deg(30), 0.6}, {deg(15), deg(10), 0.8}, {deg(45), deg(25), 0.7}};
   std::vector<Sample> samples;
   if (scenario == Scenario::kLookAhead)
   {
@@ -170,7 +170,8 @@ const char* const kScenarioNames[] = {"explore", "idle", "track", "look_ahead", 
 // for an intended change: the end sections' repellers sit at the pan limits (HeadAttractor::repellerAngle).
 const std::vector<std::vector<Sample>> kGolden = {
     // GOLDEN-BEGIN
-    {  // explore
+    {
+        // explore
         {0.14578998052262562, 0.18980063801043051, 0.068438719596526698, 0.26179938779914941},
         {0.17595019144776133, 0.1763891475757581, 0.059786556160902206, 0.26179938779914941},
         {0.78539816339744828, 0.40637332214827437, 1.5854901013405831, 0.78539816339744828},
@@ -192,7 +193,8 @@ const std::vector<std::vector<Sample>> kGolden = {
         {-1.154406907974368, 0.34905599445754126, 0.2236742617206183, -1.0471975511965976},
         {0.19425006984193799, 0.37436049570114288, 2.7930503137870506, -0.2727076956241139},
     },
-    {  // idle
+    {
+        // idle
         {0.14578998052262562, 0.18980063801043051, 0.068438719596526698, 0.26179938779914941},
         {0.17595019144776133, 0.1763891475757581, 0.059786556160902206, 0.26179938779914941},
         {0.78539816339744828, 0.40637332214827437, 1.5854901013405831, 0.78539816339744828},
@@ -214,7 +216,8 @@ const std::vector<std::vector<Sample>> kGolden = {
         {-3.9794630373031317e-24, 0.30000000000000721, 9.9486575932578301e-24, 0},
         {-4.58800851249486e-26, 0.30000000000000088, 1.147002128123715e-25, 0},
     },
-    {  // track
+    {
+        // track
         {0.28379888128543401, 0.266444080940965, 0.18046398393071639, 0.35605808998647076},
         {0.61608534114955071, 0.26236407475480394, 0.14743580513479532, 0.67509977846083247},
         {0.85218615548716825, 0.26186804055137014, 0.088408147070736479, 0.88755805601405213},
@@ -236,7 +239,8 @@ const std::vector<std::vector<Sample>> kGolden = {
         {0.89690684377417695, 0.2639590809623778, 0.068040150059221358, 0.92412684230367148},
         {0.95509143743863067, 0.26206422384622924, -0.0069310437640406715, 0.95231901577103817},
     },
-    {  // look_ahead
+    {
+        // look_ahead
         {0.0084440653108785735, 0.29999999999999999, -0.021109869296543043, 0},
         {0.9950097717319224, 0.29999999999999999, -0.049811993857174108, 1.0471975511965976},
         {0.78615552840555913, 0.29999999999999999, 0.45549920883904732, 1.0471975511965976},
@@ -258,7 +262,8 @@ const std::vector<std::vector<Sample>> kGolden = {
         {0.0072215237404607297, 0.29999999999999999, -0.018053625463674856, 0},
         {1.0215440731430034, 0.29999999999999999, -0.016092995030980144, 1.0471975511965976},
     },
-    {  // modes
+    {
+        // modes
         {0.14578998052262562, 0.18980063801043051, 0.068438719596526698, 0.26179938779914941},
         {0.17595019144776133, 0.1763891475757581, 0.059786556160902206, 0.26179938779914941},
         {0.78539816339744828, 0.40637332214827437, 1.5854901013405831, 0.78539816339744828},
@@ -280,7 +285,8 @@ const std::vector<std::vector<Sample>> kGolden = {
         {-0.0065956248324157149, 0.30008818191156983, 0.016488921982311659, 0},
         {0.23636862492619889, 0.3000107208618088, -0.18417260989949691, 0.2617993881242423},
     },
-    {  // bad_input
+    {
+        // bad_input
         {0.18226827125709161, 0.18447418955816405, 0.24590155118574458, 0.26179938779914941},
         {0.1317766327557483, 0.13373747864572741, 0.49314487059128431, 0.26215827514252199},
         {0.19127127972602737, 0.16989370176185439, -0.072003403809387065, 0.26179394773037956},
@@ -350,7 +356,8 @@ TEST(HeadAttractorGolden, TrajectoriesMatchTheRecordedImplementation)
       else
         EXPECT_NEAR(now[i].target, golden[i].target, kTolerance) << where;
       worst = std::max({worst, std::abs(now[i].command - golden[i].command),
-                        std::abs(now[i].tilt_command - golden[i].tilt_command), std::abs(now[i].rate - golden[i].rate)});
+                        std::abs(now[i].tilt_command - golden[i].tilt_command),
+                        std::abs(now[i].rate - golden[i].rate)});
     }
   }
   RecordProperty("worst_difference", std::to_string(worst));

@@ -60,7 +60,8 @@ TEST(HeadAttractorState, ResetForgetsEverythingButParametersAndBehaviour)
   // Two equal objects: a fresh attractor takes the first of equals (-15 deg); any memory of +15 deg
   // would make it differ.
   double pan_used = 0.0, pan_fresh = 0.0;
-  EXPECT_EQ(drive(used, {deg(-15), deg(15)}, 0.0, 200, pan_used), drive(fresh, {deg(-15), deg(15)}, 0.0, 200, pan_fresh))
+  EXPECT_EQ(drive(used, {deg(-15), deg(15)}, 0.0, 200, pan_used),
+            drive(fresh, {deg(-15), deg(15)}, 0.0, 200, pan_fresh))
       << "after reset() the attractor must behave exactly as a new one";
 
   HeadAttractor tracking(p);
@@ -102,7 +103,8 @@ TEST(HeadAttractorState, SetParametersValidatesAndKeepsTheState)
   EXPECT_THROW(changed.setParameters(bad), std::invalid_argument);
   EXPECT_EQ(changed.parameters().look_ahead_duration, p.look_ahead_duration) << "rejected: previous parameters kept";
   changed.setParameters(p);  // valid and equal: nothing changes
-  EXPECT_EQ(drive(changed, {deg(15), deg(-15)}, 5.0, 100, pan_changed), drive(same, {deg(15), deg(-15)}, 5.0, 100, pan_same))
+  EXPECT_EQ(drive(changed, {deg(15), deg(-15)}, 5.0, 100, pan_changed),
+            drive(same, {deg(15), deg(-15)}, 5.0, 100, pan_same))
       << "setParameters() must keep the state";
 
   HeadAttractorParameters slow = p;

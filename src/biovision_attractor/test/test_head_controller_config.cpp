@@ -100,8 +100,8 @@ TEST(HeadControllerConfig, CfgOffersEveryTunableWithTheStructDefault)
 {
   const HeadAttractorParameters defaults;
   // parametersFromConfig() throws for a .cfg parameter without a field.
-  const HeadAttractorParameters from_cfg =
-      HeadControllerNodelet::parametersFromConfig(HeadControllerConfig::__getDefault__(), HeadAttractorParameters());
+  const HeadAttractorParameters from_cfg = HeadControllerNodelet::parametersFromConfig(
+      HeadControllerConfig::__getDefault__(), HeadAttractorParameters());
   const std::map<std::string, double> cfg = doublesOf(HeadControllerConfig::__getDefault__());
   for (const auto& [name, field] : HeadAttractorParameters::namedDoubles())
   {
@@ -134,11 +134,13 @@ TEST(HeadControllerConfig, CfgRangesAreWhatValidateAccepts)
     const double low = lows.at(name), high = highs.at(name);
     EXPECT_TRUE(std::isfinite(low)) << name << ": validate() bounds every parameter from below";
     EXPECT_TRUE(accepts(name, low)) << name << ": the .cfg minimum " << low << " is rejected";
-    EXPECT_FALSE(accepts(name, std::nextafter(low, -kInf))) << name << ": validate() accepts values below the .cfg minimum";
+    EXPECT_FALSE(accepts(name, std::nextafter(low, -kInf)))
+        << name << ": validate() accepts values below the .cfg minimum";
     if (std::isfinite(high))
     {
       EXPECT_TRUE(accepts(name, high)) << name << ": the .cfg maximum " << high << " is rejected";
-      EXPECT_FALSE(accepts(name, std::nextafter(high, kInf))) << name << ": validate() accepts values above the .cfg maximum";
+      EXPECT_FALSE(accepts(name, std::nextafter(high, kInf)))
+          << name << ": validate() accepts values above the .cfg maximum";
     }
     else if (!coupled.count(name))
     {

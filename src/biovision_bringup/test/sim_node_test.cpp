@@ -70,31 +70,36 @@ TEST(Sim, TopicsRatesTfHeadAndBase)
     }));
   sensor_msgs::CameraInfo right_info;
   std::mutex info_mutex;
-  subs.push_back(nh.subscribe<sensor_msgs::CameraInfo>("stereo/right/camera_info", 5, [&](const sensor_msgs::CameraInfoConstPtr& m) {
-    counters["info"].tick(m->header.stamp);
-    std::lock_guard<std::mutex> lock(info_mutex);
-    right_info = *m;
-  }));
+  subs.push_back(nh.subscribe<sensor_msgs::CameraInfo>("stereo/right/camera_info", 5,
+                                                       [&](const sensor_msgs::CameraInfoConstPtr& m) {
+                                                         counters["info"].tick(m->header.stamp);
+                                                         std::lock_guard<std::mutex> lock(info_mutex);
+                                                         right_info = *m;
+                                                       }));
   std::atomic<double> pan{0.0};
-  subs.push_back(nh.subscribe<sensor_msgs::JointState>("joint_states", 50, [&](const sensor_msgs::JointStateConstPtr& m) {
-    counters["joints"].tick(m->header.stamp);
-    for (size_t i = 0; i < m->name.size(); ++i)
-      if (m->name[i] == "head_pan_joint")
-        pan = m->position[i];
-  }));
+  subs.push_back(
+      nh.subscribe<sensor_msgs::JointState>("joint_states", 50, [&](const sensor_msgs::JointStateConstPtr& m) {
+        counters["joints"].tick(m->header.stamp);
+        for (size_t i = 0; i < m->name.size(); ++i)
+          if (m->name[i] == "head_pan_joint")
+            pan = m->position[i];
+      }));
   std::atomic<double> odom_x{0.0};
   subs.push_back(nh.subscribe<nav_msgs::Odometry>("odom", 50, [&](const nav_msgs::OdometryConstPtr& m) {
     counters["odom"].tick(m->header.stamp);
     odom_x = m->pose.pose.position.x;
   }));
 
-  ASSERT_TRUE(waitWall([&] {
-    for (const auto& t : image_topics)
-      if (counters[t].count() < 8)
-        return false;
-    return counters["joints"].count() > 40 && counters["odom"].count() > 40;
-  }, 60.0)) << "left raw " << counters["stereo/left/image_raw"].count() << ", left rect "
-            << counters["stereo/left/image_rect_color"].count() << ", joints " << counters["joints"].count();
+  ASSERT_TRUE(waitWall(
+      [&] {
+        for (const auto& t : image_topics)
+          if (counters[t].count() < 8)
+            return false;
+        return counters["joints"].count() > 40 && counters["odom"].count() > 40;
+      },
+      60.0))
+      << "left raw " << counters["stereo/left/image_raw"].count() << ", left rect "
+      << counters["stereo/left/image_rect_color"].count() << ", joints " << counters["joints"].count();
   for (const auto& t : image_topics)
     EXPECT_NEAR(counters[t].rate(), 10.0, 1.5) << t;
   EXPECT_NEAR(counters["joints"].rate(), 50.0, 5.0);
@@ -104,18 +109,20 @@ TEST(Sim, TopicsRatesTfHeadAndBase)
   tf2_ros::Buffer buffer;
   tf2_ros::TransformListener listener(buffer);
   geometry_msgs::TransformStamped lr;
-  ASSERT_TRUE(waitWall([&] {
-    try
-    {
-      lr = buffer.lookupTransform("stereo_left_optical", "stereo_right_optical", ros::Time(0));
-      buffer.lookupTransform("odom", "stereo_left_optical", ros::Time(0));
-      return true;
-    }
-    catch (const tf2::TransformException&)
-    {
-      return false;
-    }
-  }, 20.0));
+  ASSERT_TRUE(waitWall(
+      [&] {
+        try
+        {
+          lr = buffer.lookupTransform("stereo_left_optical", "stereo_right_optical", ros::Time(0));
+          buffer.lookupTransform("odom", "stereo_left_optical", ros::Time(0));
+          return true;
+        }
+        catch (const tf2::TransformException&)
+        {
+          return false;
+        }
+      },
+      20.0));
   {
     std::lock_guard<std::mutex> lock(info_mutex);
     EXPECT_NEAR(-right_info.P[3] / right_info.P[0], lr.transform.translation.x, 1e-6);
@@ -137,10 +144,13 @@ TEST(Sim, TopicsRatesTfHeadAndBase)
   ros::Publisher cmd_pub = nh.advertise<geometry_msgs::Twist>("cmd_vel", 1);
   geometry_msgs::Twist tw;
   tw.linear.x = 0.2;
-  EXPECT_TRUE(waitWall([&] {
-    cmd_pub.publish(tw);
-    return odom_x > 0.05;
-  }, 20.0)) << "odom x " << odom_x;
+  EXPECT_TRUE(waitWall(
+      [&] {
+        cmd_pub.publish(tw);
+        return odom_x > 0.05;
+      },
+      20.0))
+      << "odom x " << odom_x;
 }
 
 int main(int argc, char** argv)

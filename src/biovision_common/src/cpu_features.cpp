@@ -21,9 +21,9 @@ const CpuFeatures& CpuFeatures::host()
 std::string CpuFeatures::describe() const
 {
   std::string s;
-  const std::pair<bool, const char*> names[] = {{popcnt, "popcnt"},     {avx2, "avx2"},         {fma, "fma"},
-                                                {avx512f, "avx512f"},   {avx512bw, "avx512bw"},
-                                                {avx512vpopcntdq, "avx512vpopcntdq"}};
+  const std::pair<bool, const char*> names[] = {{popcnt, "popcnt"},     {avx2, "avx2"},
+                                                {fma, "fma"},           {avx512f, "avx512f"},
+                                                {avx512bw, "avx512bw"}, {avx512vpopcntdq, "avx512vpopcntdq"}};
   for (const auto& [present, name] : names)
     if (present)
       s += (s.empty() ? "" : " ") + std::string(name);

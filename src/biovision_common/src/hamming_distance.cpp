@@ -21,7 +21,7 @@ void scalarDistances(const uint64_t* q, const uint64_t* c, size_t count, int wor
 }
 
 __attribute__((target("popcnt"))) void popcntDistances(const uint64_t* q, const uint64_t* c, size_t count, int words,
-                                                         uint16_t* out)
+                                                       uint16_t* out)
 {
   switch (words)
   {
@@ -47,16 +47,16 @@ __attribute__((target("popcnt"))) void popcntDistances(const uint64_t* q, const 
 // Per-64-bit-lane popcount of a 256-bit vector: nibble look-up, then SAD against zero.
 __attribute__((target("avx2"))) inline __m256i popcountLanes256(__m256i v)
 {
-  const __m256i lut = _mm256_setr_epi8(0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4, 0, 1, 1, 2, 1, 2, 2, 3, 1, 2,
-                                       2, 3, 2, 3, 3, 4);
+  const __m256i lut = _mm256_setr_epi8(0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4, 0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2,
+                                       3, 2, 3, 3, 4);
   const __m256i low = _mm256_set1_epi8(0x0f);
   const __m256i lo = _mm256_shuffle_epi8(lut, _mm256_and_si256(v, low));
   const __m256i hi = _mm256_shuffle_epi8(lut, _mm256_and_si256(_mm256_srli_epi16(v, 4), low));
   return _mm256_sad_epu8(_mm256_add_epi8(lo, hi), _mm256_setzero_si256());
 }
 
-__attribute__((target("avx2,popcnt"))) void avx2Distances(const uint64_t* q, const uint64_t* c, size_t count,
-                                                            int words, uint16_t* out)
+__attribute__((target("avx2,popcnt"))) void avx2Distances(const uint64_t* q, const uint64_t* c, size_t count, int words,
+                                                          uint16_t* out)
 {
   size_t i = 0;
   if (words == 1)
@@ -111,8 +111,7 @@ __attribute__((target("avx2,popcnt"))) void avx2Distances(const uint64_t* q, con
 }
 
 __attribute__((target("avx512f,avx512vpopcntdq,popcnt"))) void avx512Distances(const uint64_t* q, const uint64_t* c,
-                                                                                 size_t count, int words,
-                                                                                 uint16_t* out)
+                                                                               size_t count, int words, uint16_t* out)
 {
   size_t i = 0;
   if (words == 1)
@@ -134,8 +133,7 @@ __attribute__((target("avx512f,avx512vpopcntdq,popcnt"))) void avx512Distances(c
     {
       const __m512i a = _mm512_popcnt_epi64(_mm512_xor_si512(_mm512_loadu_si512(c + 2 * i), qv));
       const __m512i b = _mm512_popcnt_epi64(_mm512_xor_si512(_mm512_loadu_si512(c + 2 * i + 8), qv));
-      const __m512i sum =
-          _mm512_add_epi64(_mm512_permutex2var_epi64(a, even, b), _mm512_permutex2var_epi64(a, odd, b));
+      const __m512i sum = _mm512_add_epi64(_mm512_permutex2var_epi64(a, even, b), _mm512_permutex2var_epi64(a, odd, b));
       _mm_storeu_si128(reinterpret_cast<__m128i*>(out + i), _mm512_cvtepi64_epi16(sum));
     }
   }

@@ -18,7 +18,8 @@ cv::Mat blob(cv::Size s, cv::Point c, double sigma)
   cv::Mat m(s, CV_32F);
   for (int y = 0; y < s.height; ++y)
     for (int x = 0; x < s.width; ++x)
-      m.at<float>(y, x) = static_cast<float>(std::exp(-((x - c.x) * (x - c.x) + (y - c.y) * (y - c.y)) / (2 * sigma * sigma)));
+      m.at<float>(y, x) = static_cast<float>(
+          std::exp(-((x - c.x) * (x - c.x) + (y - c.y) * (y - c.y)) / (2 * sigma * sigma)));
   return m;
 }
 }  // namespace

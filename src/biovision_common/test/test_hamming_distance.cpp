@@ -80,4 +80,3 @@ TEST(HammingDistance, RefusesUnsupportedLengths)
   uint16_t out[1];
   EXPECT_THROW(hammingDistances(HammingPath::Scalar, a, a, 1, 3, out), std::invalid_argument);
 }
-

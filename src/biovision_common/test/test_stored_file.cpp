@@ -82,7 +82,8 @@ TEST(StoredFile, LoadRefusesAPayloadTheParserDoesNotConsume)
   });
   EXPECT_EQ(parsed, "seven");
   // A parser that stops early (trailing bytes) or reads past the end is refused, naming what was read.
-  EXPECT_THROW(StoredFile::load<int>(path, "TEST", 1, "test file", [](PayloadReader& r) { return int(r.get<uint32_t>()); }),
+  EXPECT_THROW(StoredFile::load<int>(path, "TEST", 1, "test file",
+                                     [](PayloadReader& r) { return int(r.get<uint32_t>()); }),
                StoredFileError);
   EXPECT_THROW(StoredFile::load<int>(path, "TEST", 1, "test file",
                                      [](PayloadReader& r) {

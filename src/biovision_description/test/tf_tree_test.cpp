@@ -15,10 +15,7 @@ constexpr double kBaseline = 0.12;
 class TfTreeTest : public ::testing::Test
 {
 protected:
-  TfTreeTest() : listener_(buffer_)
-  {
-    joints_pub_ = nh_.advertise<sensor_msgs::JointState>("joint_states", 10, true);
-  }
+  TfTreeTest() : listener_(buffer_) { joints_pub_ = nh_.advertise<sensor_msgs::JointState>("joint_states", 10, true); }
 
   void publishHead(double pan, double tilt)
   {

@@ -37,7 +37,7 @@ cv::Matx22d capAnisotropy(const cv::Matx22d& s, double max_ratio)
 {
   const double half_trace = 0.5 * (s(0, 0) + s(1, 1));
   const double disc = std::sqrt(std::max(half_trace * half_trace - 1.0, 0.0));  // det = 1
-  const double big = half_trace + disc;  // small = 1 / big
+  const double big = half_trace + disc;                                         // small = 1 / big
   const double limit = std::sqrt(max_ratio);
   if (big <= limit)
     return s;
@@ -65,7 +65,8 @@ AffineShapeAdaptation::AffineShapeAdaptation(const Parameters& parameters) : par
   validate(parameters);
 }
 
-cv::Matx22f AffineShapeAdaptation::estimate(const V1FeaturePyramid& pyramid, const biovision_v1::Keypoint& keypoint) const
+cv::Matx22f AffineShapeAdaptation::estimate(const V1FeaturePyramid& pyramid,
+                                            const biovision_v1::Keypoint& keypoint) const
 {
   cv::Matx22d s = cv::Matx22d::eye();
   if (parameters_.iterations == 0 || pyramid.levels() == 0)
@@ -74,7 +75,8 @@ cv::Matx22f AffineShapeAdaptation::estimate(const V1FeaturePyramid& pyramid, con
                          pyramid.levels() - 1);
   const cv::Mat& image = pyramid.image(k);
   const cv::Point2f c = pyramid.toLevel(cv::Point2f(keypoint.x, keypoint.y), k);
-  const double level_px = pyramid.toLevel(cv::Point2f(keypoint.x + 1.f, keypoint.y), k).x - c.x;  // level px per image px
+  const double level_px = pyramid.toLevel(cv::Point2f(keypoint.x + 1.f, keypoint.y), k).x -
+                          c.x;  // level px per image px
   const double sigma = parameters_.window_wavelengths * keypoint.wavelength * level_px;
   constexpr int kHalf = 6;  // 13 x 13 samples over +-2 sigma
   const double spacing = 2.0 * sigma / kHalf;

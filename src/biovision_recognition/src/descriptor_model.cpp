@@ -9,9 +9,9 @@
 #include "biovision_common/payload_writer.hpp"
 #include "biovision_common/stored_file.hpp"
 
-using biovision_common::StoredFile;
 using biovision_common::PayloadReader;
 using biovision_common::PayloadWriter;
+using biovision_common::StoredFile;
 
 namespace biovision_recognition
 {
@@ -37,7 +37,8 @@ void DescriptorModel::validate() const
 
 std::string DescriptorModel::id() const
 {
-  uint32_t crc = StoredFile::crc32(reinterpret_cast<const uint8_t*>(projection.data()), projection.size() * sizeof(float));
+  uint32_t crc = StoredFile::crc32(reinterpret_cast<const uint8_t*>(projection.data()),
+                                   projection.size() * sizeof(float));
   crc = StoredFile::crc32(reinterpret_cast<const uint8_t*>(thresholds.data()), thresholds.size() * sizeof(float), crc);
   char hex[9];
   std::snprintf(hex, sizeof(hex), "%08x", crc);

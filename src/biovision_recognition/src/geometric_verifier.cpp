@@ -18,8 +18,8 @@ GeometricVerifier::Result GeometricVerifier::verify(const std::vector<cv::Point2
     return result;
   cv::Mat inliers;
   const cv::Mat t = cv::estimateAffinePartial2D(from, to, inliers, cv::RANSAC, parameters_.inlier_distance,
-                                                static_cast<size_t>(parameters_.max_iterations),
-                                                parameters_.confidence, 10);
+                                                static_cast<size_t>(parameters_.max_iterations), parameters_.confidence,
+                                                10);
   if (t.empty())
     return result;
   cv::Mat t64;

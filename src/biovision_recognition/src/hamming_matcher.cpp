@@ -29,7 +29,9 @@ bool nearer(const HammingMatch& a, const HammingMatch& b)
 }
 }  // namespace
 
-HammingMatcher::HammingMatcher(int threads, HammingPath path) : threads_(std::max(1, threads)), path_(path) {}
+HammingMatcher::HammingMatcher(int threads, HammingPath path) : threads_(std::max(1, threads)), path_(path)
+{
+}
 
 template <typename PerQuery>
 void HammingMatcher::forEachQueryBlock(size_t queries, PerQuery&& per_block) const

@@ -38,7 +38,7 @@ void leadingEigenpairs(const LdaHashTrainer::Matrix& d, int rank, int exact_limi
     q.data()[i] = gauss(rng);
   for (int it = 0; it <= iterations; ++it)
   {
-    const Eigen::MatrixXf dq = d * q;             // rows x l
+    const Eigen::MatrixXf dq = d * q;              // rows x l
     const Eigen::MatrixXf y = d.transpose() * dq;  // n x l
     Eigen::HouseholderQR<Eigen::MatrixXf> qr(y);
     q = qr.householderQ() * Eigen::MatrixXf::Identity(n, l);
@@ -97,8 +97,7 @@ DescriptorModel LdaHashTrainer::trainOnDifferences(const Matrix& pa, const Matri
   return model;
 }
 
-Eigen::VectorXf LdaHashTrainer::thresholds(const Matrix& ya, const Matrix& yb, const Matrix& za,
-                                           const Matrix& zb) const
+Eigen::VectorXf LdaHashTrainer::thresholds(const Matrix& ya, const Matrix& yb, const Matrix& za, const Matrix& zb) const
 {
   const int k = std::max(2, parameters_.threshold_candidates);
   Eigen::VectorXf t(ya.cols());

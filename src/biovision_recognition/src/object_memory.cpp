@@ -8,10 +8,10 @@
 #include "biovision_common/payload_writer.hpp"
 #include "biovision_common/stored_file.hpp"
 
-using biovision_common::StoredFileError;
-using biovision_common::StoredFile;
 using biovision_common::PayloadReader;
 using biovision_common::PayloadWriter;
+using biovision_common::StoredFile;
+using biovision_common::StoredFileError;
 
 namespace biovision_recognition
 {

@@ -30,8 +30,9 @@ ObjectRecognizer::RegionFeatures ObjectRecognizer::regionFeatures(const cv::Mat&
     if (p.x >= box.x && p.y >= box.y && p.x <= box.x + box.width - 1 && p.y <= box.y + box.height - 1)
       local.push_back(kp);
   }
-  std::stable_sort(local.begin(), local.end(),
-                   [](const biovision_v1::Keypoint& a, const biovision_v1::Keypoint& b) { return a.strength > b.strength; });
+  std::stable_sort(local.begin(), local.end(), [](const biovision_v1::Keypoint& a, const biovision_v1::Keypoint& b) {
+    return a.strength > b.strength;
+  });
   if (static_cast<int>(local.size()) > parameters_.max_keypoints)
     local.resize(std::max(0, parameters_.max_keypoints));
   RegionFeatures features;
@@ -67,7 +68,8 @@ ObjectView ObjectRecognizer::describe(const cv::Mat& gray, cv::Rect box, const s
   return view;
 }
 
-std::vector<RecognizedObject> ObjectRecognizer::recognize(const cv::Mat& gray, const std::vector<SearchRegion>& regions_in,
+std::vector<RecognizedObject> ObjectRecognizer::recognize(const cv::Mat& gray,
+                                                          const std::vector<SearchRegion>& regions_in,
                                                           const ObjectMemory& memory, Statistics* statistics)
 {
   const auto start = std::chrono::steady_clock::now();

@@ -31,7 +31,8 @@ PairSampler::Pairs PairSampler::sample(const V1FeaturePyramid& a, const V1Featur
     for (int attempt = 0; attempt < 16; ++attempt)
     {
       const auto& other = in_b[pick(rng_)];
-      const float sep = static_cast<float>(parameters_.min_negative_separation * std::max(kp.wavelength, other.wavelength));
+      const float sep = static_cast<float>(parameters_.min_negative_separation *
+                                           std::max(kp.wavelength, other.wavelength));
       if (std::hypot(other.x - mapped.x, other.y - mapped.y) >= sep)
       {
         pairs.positive_a.push_back(kp);

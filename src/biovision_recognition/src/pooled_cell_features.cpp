@@ -26,8 +26,8 @@ AxisSample axisSample(float v, int size)
 
 /// out[c] = bilinear blend of the four neighbours' channel c, for every channel of a pooling field.
 __attribute__((target_clones("arch=skylake-avx512", "arch=haswell", "default"))) void blendChannels(
-    const float* p00, const float* p01, const float* p10, const float* p11, float w00, float w01, float w10,
-    float w11, int channels, float* out)
+    const float* p00, const float* p01, const float* p10, const float* p11, float w00, float w01, float w10, float w11,
+    int channels, float* out)
 {
   for (int c = 0; c < channels; ++c)
     out[c] = w00 * p00[c] + w01 * p01[c] + w10 * p10[c] + w11 * p11[c];
@@ -98,13 +98,15 @@ void PooledCellFeatures::extract(const V1FeaturePyramid& pyramid, const biovisio
   if (pyramid.parameters().orientations != layout_.orientations ||
       pyramid.parameters().pooling_diameter != layout_.pooling_diameter ||
       pyramid.parameters().pooling_phases < layout_.phases)  // ON phases come first: a 4-phase pyramid serves 2
-    throw std::invalid_argument("PooledCellFeatures: the pyramid's orientations, pooling or phases do not fit the layout");
+    throw std::invalid_argument(
+        "PooledCellFeatures: the pyramid's orientations, pooling or phases do not fit the layout");
   std::fill(out, out + layout_.featureCount(), 0.f);
   // Snapped to the nearest half-octave level; the grid is scaled so the patch keeps its size. (Blending
   // the two nearest levels was measured: better on the strongest viewpoint change, worse pooled fpr95.)
   const int base = V1FeaturePyramid::levelOfWavelength(keypoint.wavelength);
-  const float ratio =
-      keypoint.wavelength > 0 ? static_cast<float>(keypoint.wavelength / V1FeaturePyramid::wavelengthOfLevel(base)) : 1.f;
+  const float ratio = keypoint.wavelength > 0
+                          ? static_cast<float>(keypoint.wavelength / V1FeaturePyramid::wavelengthOfLevel(base))
+                          : 1.f;
   const cv::Matx22f shape = shape_adaptation_.estimate(pyramid, keypoint);
   sampleLevels(pyramid, cv::Point2f(keypoint.x, keypoint.y), base, ratio, shape, out);
   for (int j : layout_.scales)

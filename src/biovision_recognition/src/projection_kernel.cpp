@@ -45,19 +45,43 @@ __attribute__((target_clones("arch=skylake-avx512", "arch=haswell", "default")))
         {
           const float v0 = x0[k], v1 = x1[k], v2 = x2[k], v3 = x3[k];
           const float w0 = p0[k], w1 = p1[k], w2 = p2[k], w3 = p3[k];
-          a00 += v0 * w0; a01 += v0 * w1; a02 += v0 * w2; a03 += v0 * w3;
-          a10 += v1 * w0; a11 += v1 * w1; a12 += v1 * w2; a13 += v1 * w3;
-          a20 += v2 * w0; a21 += v2 * w1; a22 += v2 * w2; a23 += v2 * w3;
-          a30 += v3 * w0; a31 += v3 * w1; a32 += v3 * w2; a33 += v3 * w3;
+          a00 += v0 * w0;
+          a01 += v0 * w1;
+          a02 += v0 * w2;
+          a03 += v0 * w3;
+          a10 += v1 * w0;
+          a11 += v1 * w1;
+          a12 += v1 * w2;
+          a13 += v1 * w3;
+          a20 += v2 * w0;
+          a21 += v2 * w1;
+          a22 += v2 * w2;
+          a23 += v2 * w3;
+          a30 += v3 * w0;
+          a31 += v3 * w1;
+          a32 += v3 * w2;
+          a33 += v3 * w3;
         }
         float* y0 = y + i * outputs + b;
         float* y1 = y0 + outputs;
         float* y2 = y1 + outputs;
         float* y3 = y2 + outputs;
-        y0[0] += a00; y0[1] += a01; y0[2] += a02; y0[3] += a03;
-        y1[0] += a10; y1[1] += a11; y1[2] += a12; y1[3] += a13;
-        y2[0] += a20; y2[1] += a21; y2[2] += a22; y2[3] += a23;
-        y3[0] += a30; y3[1] += a31; y3[2] += a32; y3[3] += a33;
+        y0[0] += a00;
+        y0[1] += a01;
+        y0[2] += a02;
+        y0[3] += a03;
+        y1[0] += a10;
+        y1[1] += a11;
+        y1[2] += a12;
+        y1[3] += a13;
+        y2[0] += a20;
+        y2[1] += a21;
+        y2[2] += a22;
+        y2[3] += a23;
+        y3[0] += a30;
+        y3[1] += a31;
+        y3[2] += a32;
+        y3[3] += a33;
       }
       for (; b < outputs; ++b)
       {

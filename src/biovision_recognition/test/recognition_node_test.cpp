@@ -59,7 +59,7 @@ protected:
 
   /// Publishes the image (and regions with its stamp) until an objects message for it arrives.
   biovision_msgs::RecognizedObjectArrayConstPtr show(const cv::Mat& image, const std::vector<cv::Rect>& regions = {},
-                                                      float disparity = 0.f)
+                                                     float disparity = 0.f)
   {
     const ros::Time stamp = ros::Time::now();
     std_msgs::Header header;
@@ -98,7 +98,8 @@ protected:
         d.T = 0.12f;
         d.min_disparity = 0.f;
         d.max_disparity = 64.f;
-        d.image = *cv_bridge::CvImage(header, "32FC1", cv::Mat(image.size(), CV_32F, cv::Scalar(disparity))).toImageMsg();
+        d.image =
+            *cv_bridge::CvImage(header, "32FC1", cv::Mat(image.size(), CV_32F, cv::Scalar(disparity))).toImageMsg();
         disparity_pub_.publish(d);
       }
       ros::Duration(0.05).sleep();

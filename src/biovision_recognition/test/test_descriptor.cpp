@@ -30,7 +30,7 @@ TEST(V1FeaturePyramid, HalfOctaveLevelsAndCoordinates)
   EXPECT_NEAR(V1FeaturePyramid::wavelengthOfLevel(0), 4.0, 1e-12);
   EXPECT_NEAR(V1FeaturePyramid::wavelengthOfLevel(1), 4.0 * std::sqrt(2.0), 1e-12);
   EXPECT_NEAR(V1FeaturePyramid::wavelengthOfLevel(6), 32.0, 1e-12);
-  EXPECT_EQ(V1FeaturePyramid::levelOfWavelength(6.0), 1);   // the source's 6 is level 1 (5.66)
+  EXPECT_EQ(V1FeaturePyramid::levelOfWavelength(6.0), 1);  // the source's 6 is level 1 (5.66)
   EXPECT_EQ(V1FeaturePyramid::levelOfWavelength(12.0), 3);
   EXPECT_EQ(V1FeaturePyramid::levelOfWavelength(24.0), 5);
   V1FeaturePyramid pyramid;
@@ -214,8 +214,9 @@ TEST_F(TrainedDescriptor, ShiftedAndSlightlyRotatedCopiesMatchADifferentPatchDoe
     {
       const cv::Point2f p(90.f + 15 * i, 100.f + 9 * i);
       const cv::Point2f ps(p.x + 7, p.y - 5);
-      const cv::Point2f pr(static_cast<float>(rot.at<double>(0, 0) * p.x + rot.at<double>(0, 1) * p.y + rot.at<double>(0, 2)),
-                           static_cast<float>(rot.at<double>(1, 0) * p.x + rot.at<double>(1, 1) * p.y + rot.at<double>(1, 2)));
+      const cv::Point2f pr(
+          static_cast<float>(rot.at<double>(0, 0) * p.x + rot.at<double>(0, 1) * p.y + rot.at<double>(0, 2)),
+          static_cast<float>(rot.at<double>(1, 0) * p.x + rot.at<double>(1, 1) * p.y + rot.at<double>(1, 2)));
       const auto c0 = descriptor_->compute(p0, {at(p.x, p.y, lambda)});
       const auto c1 = descriptor_->compute(p1, {at(ps.x, ps.y, lambda)});
       const auto c2 = descriptor_->compute(p2, {at(pr.x, pr.y, lambda)});

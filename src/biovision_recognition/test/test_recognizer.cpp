@@ -156,9 +156,9 @@ TEST(ObjectRecognizer, DefinedBehaviourForOddRegionsAndEmptyMemory)
   ObjectRecognizer::Statistics stats;
   EXPECT_TRUE(recognizer.recognize(scene, {}, memory, &stats).empty());  // empty memory
   memory.addView(recognizer.describe(objectImage(96, 11), cv::Rect(), "cup"));
-  const std::vector<SearchRegion> odd{{cv::Rect(500, 500, 50, 50), 0},  // outside
-                                      {cv::Rect(10, 10, 0, 0), 1},      // empty
-                                      {cv::Rect(10, 10, 5, 5), 2},      // tiny
+  const std::vector<SearchRegion> odd{{cv::Rect(500, 500, 50, 50), 0},     // outside
+                                      {cv::Rect(10, 10, 0, 0), 1},         // empty
+                                      {cv::Rect(10, 10, 5, 5), 2},         // tiny
                                       {cv::Rect(-50, -50, 400, 400), 3}};  // larger than the image
   EXPECT_NO_THROW(recognizer.recognize(scene, odd, memory, &stats));
   EXPECT_EQ(stats.regions_skipped, 3);

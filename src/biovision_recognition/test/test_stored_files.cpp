@@ -34,7 +34,7 @@ void writeBytes(const std::string& path, const std::vector<uint8_t>& bytes)
 DescriptorModel smallModel()
 {
   DescriptorModel m;
-  m.layout.scales = {4, 5};  // few features: gridSide 3 and 1 -> 16 * (9 + 1)
+  m.layout.scales = {4, 5};                  // few features: gridSide 3 and 1 -> 16 * (9 + 1)
   m.layout.shape.window_wavelengths = 1.25;  // not the default: the round trip must carry the shape fields
   m.layout.shape.max_anisotropy = 3.5;
   std::mt19937 rng(2);

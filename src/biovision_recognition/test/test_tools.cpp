@@ -7,8 +7,8 @@
 #include "correspondence_data.hpp"
 #include "biovision_common/eval/roc_metrics.hpp"
 
-using biovision_common::fpr95AtThreshold;
 using biovision_common::fpr95;
+using biovision_common::fpr95AtThreshold;
 using biovision_common::rocArea;
 
 using namespace biovision_recognition;

@@ -25,9 +25,9 @@ namespace biovision_recognition
 struct CorrespondencePair
 {
   std::string name;
-  cv::Mat a, b;                // 8-bit BGR
-  cv::Mat homography;          // 3x3 CV_64F, A -> B; empty for stereo
-  cv::Mat disparity, valid;    // stereo ground truth (left = A)
+  cv::Mat a, b;              // 8-bit BGR
+  cv::Mat homography;        // 3x3 CV_64F, A -> B; empty for stereo
+  cv::Mat disparity, valid;  // stereo ground truth (left = A)
 };
 
 /// Which part of a dataset: scenes in name order alternate train, test, train, ...
@@ -59,8 +59,8 @@ inline std::vector<CorrespondencePair> loadCorrespondencePairs(const std::string
     const auto scenes = biovision_common::MiddleburyDataset::load(stereo_dir);
     for (size_t i = 0; i < scenes.size(); ++i)
       if (inPart(i, part))
-        pairs.push_back({"stereo/" + scenes[i].name, scenes[i].left, scenes[i].right, cv::Mat(),
-                         scenes[i].ground_truth, scenes[i].nonoccluded});
+        pairs.push_back({"stereo/" + scenes[i].name, scenes[i].left, scenes[i].right, cv::Mat(), scenes[i].ground_truth,
+                         scenes[i].nonoccluded});
   }
   if (!sequence_dir.empty())
   {
@@ -73,7 +73,8 @@ inline std::vector<CorrespondencePair> loadCorrespondencePairs(const std::string
     std::vector<int> index{1};
     for (int k : targets)
     {
-      const std::string image = sequence_dir + (oxford ? "/img" + std::to_string(k) + ".png" : "/" + std::to_string(k) + ".ppm");
+      const std::string image = sequence_dir +
+                                (oxford ? "/img" + std::to_string(k) + ".png" : "/" + std::to_string(k) + ".ppm");
       const std::string h = sequence_dir + (oxford ? "/H1to" + std::to_string(k) + "p" : "/H_1_" + std::to_string(k));
       views.emplace_back(cv::imread(image, cv::IMREAD_COLOR), readHomography(h));
       if (views.back().first.empty())

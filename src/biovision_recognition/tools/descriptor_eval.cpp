@@ -20,8 +20,8 @@
 #include "biovision_common/eval/roc_metrics.hpp"
 #include "biovision_common/tool_options.hpp"
 
-using biovision_common::fpr95AtThreshold;
 using biovision_common::fpr95;
+using biovision_common::fpr95AtThreshold;
 using biovision_common::rocArea;
 
 using namespace biovision_recognition;
@@ -39,7 +39,7 @@ struct Options
   PairSampler::Parameters sampling;   // --levels, --pairs
   std::vector<std::string> peers = kPeers;
   std::vector<std::string> shaped_peers;  // default: none
-  std::string command;  // the options as given, for the results
+  std::string command;                    // the options as given, for the results
 };
 
 Options parseOptions(int argc, char** argv)
@@ -169,8 +169,9 @@ Described describePeer(const std::string& method, const cv::Mat& image, const st
 /// The peer on each keypoint's own patch, resampled so that its affine shape S becomes a circle
 /// (patch(q) = image(c + S q)): the peer then sees what our pooling grid sees. Slow (one image per
 /// keypoint); its time is not comparable.
-Described describeShapedPeer(const std::string& method, const cv::Mat& image, const std::vector<biovision_v1::Keypoint>& kps,
-                             const std::vector<cv::Matx22f>& shapes, float patch_wavelengths, double& seconds)
+Described describeShapedPeer(const std::string& method, const cv::Mat& image,
+                             const std::vector<biovision_v1::Keypoint>& kps, const std::vector<cv::Matx22f>& shapes,
+                             float patch_wavelengths, double& seconds)
 {
   const cv::Ptr<cv::Feature2D> f = createPeer(method);
   cv::Mat gray;
@@ -292,7 +293,8 @@ Evaluation evaluate(const Options& o, const Models& ours)
       };
       const auto shapes_a = shapesOf(pa, p.positive_a), shapes_b = shapesOf(pb, kb);
       for (const auto& m : o.shaped_peers)
-        described[m + "+shape"] = {describeShapedPeer(m, pair.a, p.positive_a, shapes_a, support, seconds[m + "+shape"]),
+        described[m + "+shape"] = {describeShapedPeer(m, pair.a, p.positive_a, shapes_a, support,
+                                                      seconds[m + "+shape"]),
                                    describeShapedPeer(m, pair.b, kb, shapes_b, support, seconds[m + "+shape"])};
     }
     // Only pairs every method described.
@@ -331,15 +333,16 @@ nlohmann::ordered_json report(const Options& o, const Evaluation& evaluation)
 {
   nlohmann::ordered_json results;
   results["command"] = "rosrun biovision_recognition descriptor_eval " + o.command;
-  std::cout << std::left << std::setw(22) << "method" << std::setw(10) << "fpr95" << std::setw(12) << "fpr95_at_t" << std::setw(10) << "roc_auc"
-            << std::setw(14) << "us/keypoint" << "pairs\n";
+  std::cout << std::left << std::setw(22) << "method" << std::setw(10) << "fpr95" << std::setw(12) << "fpr95_at_t"
+            << std::setw(10) << "roc_auc" << std::setw(14) << "us/keypoint"
+            << "pairs\n";
   for (const auto& [m, s] : evaluation.scores)
   {
     const double f = fpr95(s.positive, s.negative), auc = rocArea(s.positive, s.negative);
     const double f_at_t = fpr95AtThreshold(s.positive, s.negative);
     const double us = 1e6 * s.seconds / std::max<size_t>(1, s.keypoints);
-    std::cout << std::setw(22) << m << std::setw(10) << f << std::setw(12) << f_at_t << std::setw(10) << auc << std::setw(14) << us
-              << s.positive.size() << "\n";
+    std::cout << std::setw(22) << m << std::setw(10) << f << std::setw(12) << f_at_t << std::setw(10) << auc
+              << std::setw(14) << us << s.positive.size() << "\n";
     results[m] = {{"fpr95", f},
                   {"fpr95_at_threshold", f_at_t},
                   {"roc_auc", auc},
@@ -348,9 +351,15 @@ nlohmann::ordered_json report(const Options& o, const Evaluation& evaluation)
                   {"binary", s.binary}};
   }
   std::string notes =
-      "fpr95 = false-positive rate at exactly 95% recall (ties at the threshold distance shared in proportion, i.e. the ROC curve interpolated); fpr95_at_threshold = at the first distance whose recall reaches 95%, whole tie charged; lower is better. Test part only (odd scenes, sequence 1-4..1-6), disjoint from training. Goal: the lowest fpr95 of the binary descriptors (sift is float, for reference).";
+      "fpr95 = false-positive rate at exactly 95% recall (ties at the threshold distance shared in proportion, i.e. "
+      "the ROC curve interpolated); fpr95_at_threshold = at the first distance whose recall reaches 95%, whole tie "
+      "charged; lower is better. Test part only (odd scenes, sequence 1-4..1-6), disjoint from training. Goal: the "
+      "lowest fpr95 of the binary descriptors (sift is float, for reference).";
   if (!o.shaped_peers.empty())
-    notes += " +shape rows: the peer run on each keypoint's patch resampled by our affine shape adaptation (a hybrid made to ask whether a gain is the adaptation's or the descriptor's, not the peer as OpenCV ships it; its time includes one warp and one image per keypoint).";
+    notes +=
+        " +shape rows: the peer run on each keypoint's patch resampled by our affine shape adaptation (a hybrid made "
+        "to ask whether a gain is the adaptation's or the descriptor's, not the peer as OpenCV ships it; its time "
+        "includes one warp and one image per keypoint).";
   results["notes"] = notes;
   nlohmann::ordered_json& scenes = results["scenes"] = nlohmann::ordered_json::object();
   for (const auto& [name, fprs] : evaluation.per_pair_fpr)

@@ -56,7 +56,9 @@ struct Outcome
 class OrbBaseline
 {
 public:
-  explicit OrbBaseline(const GeometricVerifier::Parameters& verifier) : orb_(cv::ORB::create(500)), verifier_(verifier) {}
+  explicit OrbBaseline(const GeometricVerifier::Parameters& verifier) : orb_(cv::ORB::create(500)), verifier_(verifier)
+  {
+  }
   void learn(const cv::Mat& image, const std::string& label)
   {
     Entry e;
@@ -237,8 +239,9 @@ int main(int argc, char** argv)
     results["distractors"] = distractors.size();
     results["v1"] = outcomeJson("v1", ours);
     results["orb"] = outcomeJson("orb", base);
-    results["notes"] = "goal: >= 90% recognised with <= 2% false positives, ahead of ORB + BFMatcher (ratio test 0.8) + "
-                       "the same RANSAC verification";
+    results["notes"] =
+        "goal: >= 90% recognised with <= 2% false positives, ahead of ORB + BFMatcher (ratio test 0.8) + "
+        "the same RANSAC verification";
     if (!json_path.empty())
       biovision_common::writeJsonFile(json_path, results);
   }

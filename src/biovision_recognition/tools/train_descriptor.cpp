@@ -94,8 +94,8 @@ Options parseOptions(int argc, char** argv)
     o.layout.pooling_diameter = pooling[0];
     o.layout.pooling_step = pooling[1];
     auto& adaptation = o.layout.shape;
-    std::tie(adaptation.iterations, adaptation.window_wavelengths, adaptation.level_offset, adaptation.max_anisotropy) =
-        shape;
+    std::tie(adaptation.iterations, adaptation.window_wavelengths, adaptation.level_offset,
+             adaptation.max_anisotropy) = shape;
     try
     {
       o.layout.validate();  // the layout's bounds are written there only
@@ -178,14 +178,15 @@ int main(int argc, char** argv)
     std::cerr << "training on " << positive_a.rows() << " positive and " << negative_a.rows() << " negative pairs, "
               << layout.featureCount() << " features\n";
     const LdaHashTrainer trainer(o.training);
-    DescriptorModel model = trainer.trainOnDifferences(positive_a, positive_difference, negative_a, negative_difference);
+    DescriptorModel model = trainer.trainOnDifferences(positive_a, positive_difference, negative_a,
+                                                       negative_difference);
     model.layout = layout;
     const std::time_t now = std::time(nullptr);
     char date[32];
     std::strftime(date, sizeof(date), "%Y-%m-%d", std::gmtime(&now));
     model.provenance = "rosrun biovision_recognition train_descriptor " + o.command + "  (" +
-                       std::to_string(positive_a.rows()) + " positive / " + std::to_string(negative_a.rows()) + " negative pairs, " +
-                       date + ")";
+                       std::to_string(positive_a.rows()) + " positive / " + std::to_string(negative_a.rows()) +
+                       " negative pairs, " + date + ")";
     model.save(o.out);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::cerr << "wrote " << o.out << " (" << model.id() << ") in " << seconds << " s\n";

@@ -14,10 +14,10 @@ TEST(ClockJumpGuard, ResetsRunOnceOnEachBackwardJumpOnly)
   EXPECT_FALSE(guard.observe(ros::Time(101.0)));
   EXPECT_FALSE(guard.observe(ros::Time(100.97)));  // jitter within the tolerance
   EXPECT_EQ(first, 0);
-  EXPECT_TRUE(guard.observe(ros::Time(10.0)));      // the bag looped
+  EXPECT_TRUE(guard.observe(ros::Time(10.0)));  // the bag looped
   EXPECT_EQ(first, 1);
   EXPECT_EQ(second, 1);
-  EXPECT_FALSE(guard.observe(ros::Time(11.0)));     // time runs on from the new start
+  EXPECT_FALSE(guard.observe(ros::Time(11.0)));  // time runs on from the new start
   EXPECT_TRUE(guard.observe(ros::Time(5.0)));
   EXPECT_EQ(guard.jumps(), 2u);
   EXPECT_EQ(first, 2);

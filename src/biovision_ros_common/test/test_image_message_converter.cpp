@@ -71,9 +71,9 @@ TEST(ImageMessageConverter, EveryColourEncodingGivesTheSameBgrPicture)
   rgb.convertTo(rgb16, CV_16U, 257);
   bgra.convertTo(bgra16, CV_16U, 257);
   rgba.convertTo(rgba16, CV_16U, 257);
-  const std::vector<std::pair<std::string, cv::Mat>> cases = {
-      {"bgr8", bgr},       {"8UC3", bgr},       {"rgb8", rgb},         {"bgra8", bgra},        {"rgba8", rgba},
-      {"bgr16", bgr16},    {"rgb16", rgb16},    {"bgra16", bgra16},    {"rgba16", rgba16}};
+  const std::vector<std::pair<std::string, cv::Mat>> cases = {{"bgr8", bgr},    {"8UC3", bgr},      {"rgb8", rgb},
+                                                              {"bgra8", bgra},  {"rgba8", rgba},    {"bgr16", bgr16},
+                                                              {"rgb16", rgb16}, {"bgra16", bgra16}, {"rgba16", rgba16}};
   for (const auto& [encoding, mat] : cases)
     for (bool big_endian : {false, true})
     {
@@ -96,11 +96,12 @@ TEST(ImageMessageConverter, SixteenBitBigEndianGreyKeepsItsValues)
     cv::Mat expected8;
     grey16.convertTo(expected8, CV_8U, 1.0 / 257.0);
     EXPECT_EQ(maxDifference(ImageMessageConverter::toCv(message(grey16, encoding, 0, true)), expected8), 0);
-    EXPECT_EQ(maxDifference(ImageMessageConverter::toFloat32(message(grey16, encoding, 2, true)), [&] {
-                cv::Mat f;
-                grey16.convertTo(f, CV_32F);
-                return f;
-              }()),
+    EXPECT_EQ(maxDifference(ImageMessageConverter::toFloat32(message(grey16, encoding, 2, true)),
+                            [&] {
+                              cv::Mat f;
+                              grey16.convertTo(f, CV_32F);
+                              return f;
+                            }()),
               0);
   }
 }
@@ -121,12 +122,12 @@ TEST(ImageMessageConverter, PaddedRowsAreSkippedAndUnpaddedOnesShareTheMessage)
 TEST(ImageMessageConverter, BayerPatternsAreDemosaicedToTheRightColours)
 {
   // Mosaic a uniform colour in each ROS pattern: the debayered centre must be that colour.
-  const cv::Vec3b colour(40, 120, 220);  // B, G, R
-  const std::map<std::string, std::array<int, 4>> patterns = {  // channel (0 B, 1 G, 2 R) of (0,0) (0,1) (1,0) (1,1)
-      {"bayer_rggb8", {2, 1, 1, 0}},
-      {"bayer_bggr8", {0, 1, 1, 2}},
-      {"bayer_gbrg8", {1, 0, 2, 1}},
-      {"bayer_grbg8", {1, 2, 0, 1}}};
+  const cv::Vec3b colour(40, 120, 220);                       // B, G, R
+  const std::map<std::string, std::array<int, 4>> patterns = {// channel (0 B, 1 G, 2 R) of (0,0) (0,1) (1,0) (1,1)
+                                                              {"bayer_rggb8", {2, 1, 1, 0}},
+                                                              {"bayer_bggr8", {0, 1, 1, 2}},
+                                                              {"bayer_gbrg8", {1, 0, 2, 1}},
+                                                              {"bayer_grbg8", {1, 2, 0, 1}}};
   for (const auto& [encoding, channel] : patterns)
   {
     cv::Mat raw(16, 16, CV_8U);

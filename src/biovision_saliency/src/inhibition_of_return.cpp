@@ -38,7 +38,7 @@ void InhibitionOfReturn::reset()
 
 size_t InhibitionOfReturn::size(double t) const
 {
-  return static_cast<size_t>(std::count_if(memories_.begin(), memories_.end(),
-                                           [&](const Memory& m) { return t - m.time < decay_time_; }));
+  return static_cast<size_t>(
+      std::count_if(memories_.begin(), memories_.end(), [&](const Memory& m) { return t - m.time < decay_time_; }));
 }
 }  // namespace biovision_saliency

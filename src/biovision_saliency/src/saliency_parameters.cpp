@@ -26,7 +26,8 @@ void SaliencyParameters::validate() const
     fail("near_fraction outside [0, 1)");
   if (!(preferred_width > 0))
     fail("preferred_width must be > 0");
-  if (speed_edges.size() != 3 || !(speed_edges[0] >= 0 && speed_edges[0] < speed_edges[1] && speed_edges[1] < speed_edges[2]))
+  if (speed_edges.size() != 3 ||
+      !(speed_edges[0] >= 0 && speed_edges[0] < speed_edges[1] && speed_edges[1] < speed_edges[2]))
     fail("speed_edges must be 3 ascending values >= 0");
   if (!(colour_floor > 0 && disparity_floor > 0 && motion_floor > 0))
     fail("normalisation floors must be > 0");

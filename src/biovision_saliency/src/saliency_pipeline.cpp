@@ -44,9 +44,7 @@ float medianComponent(const cv::Mat& flow, int c)
 }  // namespace
 
 SaliencyPipeline::SaliencyPipeline(const SaliencyParameters& parameters)
-  : parameters_(parameters)
-  , blobs_(workingSigmas(parameters))
-  , ior_(parameters.ior_radius, parameters.ior_decay_time)
+  : parameters_(parameters), blobs_(workingSigmas(parameters)), ior_(parameters.ior_radius, parameters.ior_decay_time)
 {
   parameters_.validate();
   if (parameters_.use_dis_flow)
@@ -187,7 +185,8 @@ std::vector<SalientRegion> SaliencyPipeline::extractRegions(const cv::Mat& map, 
                                 static_cast<float>((r.y + peak_at.y + 0.5) * scale));
     const int m = static_cast<int>(std::lround(parameters_.margin));
     cv::Rect box(static_cast<int>(std::floor(r.x * scale)) - m, static_cast<int>(std::floor(r.y * scale)) - m,
-                 static_cast<int>(std::ceil(r.width * scale)) + 2 * m, static_cast<int>(std::ceil(r.height * scale)) + 2 * m);
+                 static_cast<int>(std::ceil(r.width * scale)) + 2 * m,
+                 static_cast<int>(std::ceil(r.height * scale)) + 2 * m);
     region.box = box & image;
     const cv::Point2d dir = head.directionOf(region.centre);
     region.pan = static_cast<float>(dir.x);

@@ -110,7 +110,8 @@ TEST_F(SaliencyNodeTest, RegionsAtTheInputRateNearObjectFirst)
   // producing regions afterwards.
   std_msgs::Header h;
   h.stamp = ros::Time::now();
-  sensor_msgs::ImagePtr truncated = cv_bridge::CvImage(h, "mono8", cv::Mat(240, 320, CV_8U, cv::Scalar(100))).toImageMsg();
+  sensor_msgs::ImagePtr truncated =
+      cv_bridge::CvImage(h, "mono8", cv::Mat(240, 320, CV_8U, cv::Scalar(100))).toImageMsg();
   truncated->data.resize(truncated->data.size() / 2);
   image_pub_.publish(truncated);
   const ros::WallTime diag_deadline = ros::WallTime::now() + ros::WallDuration(15);

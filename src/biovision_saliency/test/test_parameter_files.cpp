@@ -12,8 +12,8 @@ using namespace biovision_saliency;
 
 TEST(ParameterFiles, YamlDefaultsEqualTheCfgDefaults)
 {
-  const auto problems =
-      biovision_ros_common::yamlDefaultMismatches<SaliencyConfig>(BIOVISION_CONFIG_DIR "/saliency.yaml");
+  const auto problems = biovision_ros_common::yamlDefaultMismatches<SaliencyConfig>(BIOVISION_CONFIG_DIR
+                                                                                    "/saliency.yaml");
   EXPECT_TRUE(problems.empty()) << biovision_ros_common::joinLines(problems);
 }
 
@@ -31,7 +31,8 @@ TEST(ParameterFiles, CfgDefaultsEqualTheCoreDefaults)
   EXPECT_NEAR(cfg.motion_weight, core.motion_weight, 1e-4 * std::max(1.0, std::abs(core.motion_weight)));
   EXPECT_NEAR(cfg.final_blur, core.final_blur, 1e-4 * std::max(1.0, std::abs(core.final_blur)));
   EXPECT_NEAR(cfg.near_fraction, core.near_fraction, 1e-4 * std::max(1.0, std::abs(core.near_fraction)));
-  EXPECT_NEAR(cfg.preferred_disparity, core.preferred_disparity, 1e-4 * std::max(1.0, std::abs(core.preferred_disparity)));
+  EXPECT_NEAR(cfg.preferred_disparity, core.preferred_disparity,
+              1e-4 * std::max(1.0, std::abs(core.preferred_disparity)));
   EXPECT_NEAR(cfg.preferred_width, core.preferred_width, 1e-4 * std::max(1.0, std::abs(core.preferred_width)));
   EXPECT_NEAR(cfg.threshold, core.threshold, 1e-4 * std::max(1.0, std::abs(core.threshold)));
   EXPECT_NEAR(cfg.min_saliency, core.min_saliency, 1e-4 * std::max(1.0, std::abs(core.min_saliency)));

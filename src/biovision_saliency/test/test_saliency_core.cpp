@@ -163,7 +163,7 @@ TEST(SaliencyPipeline, FirstFrameHasNoMotionChannel)
 TEST(InhibitionOfReturn, SecondRegionComesFirstThenTheFirstIsReleased)
 {
   cv::Mat img = greyScene();
-  cv::circle(img, {450, 200}, 30, cv::Scalar(0, 0, 230), cv::FILLED);   // strongest
+  cv::circle(img, {450, 200}, 30, cv::Scalar(0, 0, 230), cv::FILLED);    // strongest
   cv::circle(img, {180, 300}, 30, cv::Scalar(200, 90, 40), cv::FILLED);  // blue, peak ~0.7 of the red
   SaliencyParameters p;
   p.threshold = 0.5;
@@ -214,7 +214,8 @@ TEST(SaliencyPipeline, RejectsBadInputClearly)
   EXPECT_THROW(pipeline.process(cv::Mat(100, 100, CV_16UC3), cv::Mat(), head(), 0), std::invalid_argument);
   EXPECT_THROW(pipeline.process(cv::Mat(8, 8, CV_8UC3), cv::Mat(), head(), 0), std::invalid_argument);
   // Disparity of another aspect (stale or mismatched stereo output).
-  EXPECT_THROW(pipeline.process(greyScene(), cv::Mat(100, 100, CV_32F, cv::Scalar(1)), head(), 0), std::invalid_argument);
+  EXPECT_THROW(pipeline.process(greyScene(), cv::Mat(100, 100, CV_32F, cv::Scalar(1)), head(), 0),
+               std::invalid_argument);
   EXPECT_THROW(pipeline.process(greyScene(), cv::Mat(480, 640, CV_16U), head(), 0), std::invalid_argument);
   SaliencyParameters bad;
   bad.threshold = 1.5;

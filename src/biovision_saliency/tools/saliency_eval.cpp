@@ -21,8 +21,8 @@
 #include "biovision_saliency/saliency_pipeline.hpp"
 #include "biovision_common/tool_options.hpp"
 
-using biovision_common::SaliencyMetrics;
 using biovision_common::MiddleburyFlow;
+using biovision_common::SaliencyMetrics;
 
 using namespace biovision_saliency;
 namespace fs = std::filesystem;
@@ -293,15 +293,16 @@ int main(int argc, char** argv)
     const std::string& name = method.first;
     const MethodScores& s = scores[name];
     const double ms_160 = median(s.ms160), ms_320 = median(s.ms320);
-    figures[name] = {{"cc", s.mean.cc}, {"sim", s.mean.sim}, {"kl", s.mean.kl},
-                     {"nss", s.mean.nss}, {"ms_160", ms_160}, {"ms_320", ms_320}};
+    figures[name] = {{"cc", s.mean.cc},   {"sim", s.mean.sim}, {"kl", s.mean.kl},
+                     {"nss", s.mean.nss}, {"ms_160", ms_160},  {"ms_320", ms_320}};
     std::fprintf(stderr, "%-18s CC %.3f SIM %.3f KL %.3f NSS %.3f  %.2f ms @160  %.2f ms @320\n", name.c_str(),
                  s.mean.cc, s.mean.sim, s.mean.kl, s.mean.nss, ms_160, ms_320);
   }
   figures["ratio_biovision_vs_fine_grained"] = ratioAgainst(scores["biovision"], scores["fine_grained"]);
   figures["ratio_biovision_vs_spectral_residual"] = ratioAgainst(scores["biovision"], scores["spectral_residual"]);
-  figures["notes"] = "Ratios: ours / peer (cc, nss > 1 = better agreement with human fixations; time < 1 = faster). "
-                     "Data: MIT1003 (Judd et al. 2009), Middlebury flow (Baker et al. 2011).";
+  figures["notes"] =
+      "Ratios: ours / peer (cc, nss > 1 = better agreement with human fixations; time < 1 = faster). "
+      "Data: MIT1003 (Judd et al. 2009), Middlebury flow (Baker et al. 2011).";
   if (!o.flow_root.empty())
     figures["motion"] = motionCheck(o.flow_root);
   std::cout << figures.dump(2) << "\n";

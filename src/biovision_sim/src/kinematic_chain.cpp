@@ -4,7 +4,8 @@
 
 namespace biovision_sim
 {
-Eigen::Isometry3d KinematicChain::evaluate(const std::vector<std::string>& names, const std::vector<double>& positions) const
+Eigen::Isometry3d KinematicChain::evaluate(const std::vector<std::string>& names,
+                                           const std::vector<double>& positions) const
 {
   Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
   for (const Link& l : links_)

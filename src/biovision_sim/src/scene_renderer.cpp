@@ -106,10 +106,12 @@ void SceneRenderer::addBox(const World::Object& o)
   const Eigen::Affine3f pose = Eigen::Translation3f(o.position.cast<float>()) *
                                Eigen::AngleAxisf(static_cast<float>(o.yaw), Eigen::Vector3f::UnitZ());
   const Eigen::Vector3f h = (o.size / 2).cast<float>();
-  auto P = [&](float x, float y, float z) -> Eigen::Vector3f { return pose * Eigen::Vector3f(x * h.x(), y * h.y(), z * h.z()); };
+  auto P = [&](float x, float y, float z) -> Eigen::Vector3f {
+    return pose * Eigen::Vector3f(x * h.x(), y * h.y(), z * h.z());
+  };
   const float sx = 2 * h.x(), sy = 2 * h.y(), sz = 2 * h.z();
   // Texture coordinates in metres along each face.
-  addQuad(P(1, -1, -1), P(1, 1, -1), P(1, 1, 1), P(1, -1, 1), {0, sz}, {sy, sz}, {sy, 0}, {0, 0}, o.texture);     // +x
+  addQuad(P(1, -1, -1), P(1, 1, -1), P(1, 1, 1), P(1, -1, 1), {0, sz}, {sy, sz}, {sy, 0}, {0, 0}, o.texture);      // +x
   addQuad(P(-1, 1, -1), P(-1, -1, -1), P(-1, -1, 1), P(-1, 1, 1), {0, sz}, {sy, sz}, {sy, 0}, {0, 0}, o.texture);  // -x
   addQuad(P(1, 1, -1), P(-1, 1, -1), P(-1, 1, 1), P(1, 1, 1), {0, sz}, {sx, sz}, {sx, 0}, {0, 0}, o.texture);      // +y
   addQuad(P(-1, -1, -1), P(1, -1, -1), P(1, -1, 1), P(-1, -1, 1), {0, sz}, {sx, sz}, {sx, 0}, {0, 0}, o.texture);  // -y
@@ -128,14 +130,21 @@ void SceneRenderer::addCylinder(const World::Object& o)
     const float a1 = static_cast<float>(2 * M_PI * (i + 1) / kCylinderSides + o.yaw);
     const Eigen::Vector3f e0(std::cos(a0) * r, std::sin(a0) * r, 0), e1(std::cos(a1) * r, std::sin(a1) * r, 0);
     const float u0 = circumference * i / kCylinderSides, u1 = circumference * (i + 1) / kCylinderSides;
-    addQuad(c + e0 + Eigen::Vector3f(0, 0, -hz), c + e1 + Eigen::Vector3f(0, 0, -hz), c + e1 + Eigen::Vector3f(0, 0, hz),
-            c + e0 + Eigen::Vector3f(0, 0, hz), {u0, 2 * hz}, {u1, 2 * hz}, {u1, 0}, {u0, 0}, o.texture);
+    addQuad(c + e0 + Eigen::Vector3f(0, 0, -hz), c + e1 + Eigen::Vector3f(0, 0, -hz),
+            c + e1 + Eigen::Vector3f(0, 0, hz), c + e0 + Eigen::Vector3f(0, 0, hz), {u0, 2 * hz}, {u1, 2 * hz}, {u1, 0},
+            {u0, 0}, o.texture);
     // Caps as fans around the centre.
     const Eigen::Vector3f top = c + Eigen::Vector3f(0, 0, hz), bottom = c + Eigen::Vector3f(0, 0, -hz);
-    triangles_.push_back({{top, r, r}, {top + e0, r + e0.x(), r + e0.y()}, {top + e1, r + e1.x(), r + e1.y()},
-                          Eigen::Vector3f::UnitZ(), o.texture});
-    triangles_.push_back({{bottom, r, r}, {bottom + e1, r + e1.x(), r + e1.y()}, {bottom + e0, r + e0.x(), r + e0.y()},
-                          -Eigen::Vector3f::UnitZ(), o.texture});
+    triangles_.push_back({{top, r, r},
+                          {top + e0, r + e0.x(), r + e0.y()},
+                          {top + e1, r + e1.x(), r + e1.y()},
+                          Eigen::Vector3f::UnitZ(),
+                          o.texture});
+    triangles_.push_back({{bottom, r, r},
+                          {bottom + e1, r + e1.x(), r + e1.y()},
+                          {bottom + e0, r + e0.x(), r + e0.y()},
+                          -Eigen::Vector3f::UnitZ(),
+                          o.texture});
   }
 }
 
@@ -146,7 +155,8 @@ void SceneRenderer::render(const Eigen::Isometry3d& world_from_camera, const Pin
   const int W = camera.width * s, H = camera.height * s;
   const float fx = static_cast<float>(camera.fx * s), fy = static_cast<float>(camera.fy * s);
   // Pixel centres: final pixel (x, y) covers samples whose centres average to x (OpenCV convention).
-  const float cx = static_cast<float>((camera.cx + 0.5) * s - 0.5), cy = static_cast<float>((camera.cy + 0.5) * s - 0.5);
+  const float cx = static_cast<float>((camera.cx + 0.5) * s - 0.5),
+              cy = static_cast<float>((camera.cy + 0.5) * s - 0.5);
   const Eigen::Isometry3f camera_from_world = world_from_camera.inverse().cast<float>();
   const Eigen::Vector3f camera_position = world_from_camera.translation().cast<float>();
   const Eigen::Vector3f light = world_.lightDirection().cast<float>();
@@ -192,7 +202,8 @@ void SceneRenderer::render(const Eigen::Isometry3d& world_from_camera, const Pin
       const float tex_area = std::abs((poly[i1].u - poly[i0].u) * (poly[i2].v - poly[i0].v) -
                                       (poly[i2].u - poly[i0].u) * (poly[i1].v - poly[i0].v)) *
                              static_cast<float>(tex.texelsPerMetre() * tex.texelsPerMetre());
-      const int level = std::max(0, static_cast<int>(std::floor(0.5f * std::log2(std::max(1e-12f, tex_area / std::abs(area))))));
+      const int level = std::max(
+          0, static_cast<int>(std::floor(0.5f * std::log2(std::max(1e-12f, tex_area / std::abs(area))))));
       const TextureLevel lv = textureLevel(tex, level);
       const int bx0 = std::max(0, static_cast<int>(std::floor(std::min({sx[i0], sx[i1], sx[i2]}))));
       const int bx1 = std::min(W - 1, static_cast<int>(std::ceil(std::max({sx[i0], sx[i1], sx[i2]}))));

@@ -7,7 +7,11 @@
 namespace biovision_sim
 {
 Servo::Servo(double lower, double upper, double max_speed, double position)
-  : lower_(lower), upper_(upper), max_speed_(max_speed), position_(std::clamp(position, lower, upper)), target_(position_)
+  : lower_(lower),
+    upper_(upper),
+    max_speed_(max_speed),
+    position_(std::clamp(position, lower, upper)),
+    target_(position_)
 {
   if (!(lower < upper) || !(max_speed > 0))
     throw std::invalid_argument("Servo: needs lower < upper and max_speed > 0");

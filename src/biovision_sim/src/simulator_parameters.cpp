@@ -37,8 +37,7 @@ void SimulatorParameters::validate() const
           "[camera_rate = " + format(camera_rate) + ", inf) Hz");
   require(width >= 32, "width", width, "[32, inf) px");
   require(height >= 24, "height", height, "[24, inf) px");
-  require(horizontal_fov_deg > 1 && horizontal_fov_deg < 179, "horizontal_fov_deg", horizontal_fov_deg,
-          "(1, 179) deg");
+  require(horizontal_fov_deg > 1 && horizontal_fov_deg < 179, "horizontal_fov_deg", horizontal_fov_deg, "(1, 179) deg");
   require(supersample >= 1 && supersample <= 4, "supersample", supersample, "[1, 4]");
   require(std::isfinite(noise_sigma) && noise_sigma >= 0, "noise_sigma", noise_sigma, "[0, inf) grey levels");
   require(blur_sigma >= 0 && blur_sigma <= 10, "blur_sigma", blur_sigma, "[0, 10] px");

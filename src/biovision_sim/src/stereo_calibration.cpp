@@ -39,7 +39,8 @@ StereoCalibration StereoCalibration::fromFocalLength(int width, int height, doub
   return StereoCalibration(PinholeCamera::fromFocalLength(width, height, focal_length), baseline);
 }
 
-StereoCalibration::StereoCalibration(const PinholeCamera& camera, double baseline) : camera_(camera), baseline_(baseline)
+StereoCalibration::StereoCalibration(const PinholeCamera& camera, double baseline)
+  : camera_(camera), baseline_(baseline)
 {
 }
 

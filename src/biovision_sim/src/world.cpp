@@ -34,7 +34,8 @@ T get(const std::string& origin, const YAML::Node& parent, const char* key, cons
   }
 }
 
-Eigen::Vector3d vec3(const std::string& origin, const YAML::Node& parent, const char* key, const Eigen::Vector3d& fallback)
+Eigen::Vector3d vec3(const std::string& origin, const YAML::Node& parent, const char* key,
+                     const Eigen::Vector3d& fallback)
 {
   const YAML::Node n = parent[key];
   if (!n)

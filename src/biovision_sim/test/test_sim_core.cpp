@@ -326,7 +326,8 @@ TEST(StereoCalibration, BadInputThrowsNamingTheArgument)
       {[] { StereoCalibration::fromFocalLength(0, 240, 400.0, 0.1); }, "width"},
   };
   for (const auto& c : cases)
-    EXPECT_NE(invalidArgument(c.first).find(c.second), std::string::npos) << c.second << ": " << invalidArgument(c.first);
+    EXPECT_NE(invalidArgument(c.first).find(c.second), std::string::npos)
+        << c.second << ": " << invalidArgument(c.first);
   EXPECT_EQ(invalidArgument([] { StereoCalibration::fromFocalLength(1, 1, 1e-3, 0.0); }), "no error");
 }
 

@@ -20,8 +20,8 @@ namespace
 {
 struct Camera
 {
-  cv::Mat K, D;      // 3x3, 1x4 (radial-tangential = plumb_bob k1 k2 p1 p2)
-  cv::Mat T_BS;      // 4x4 body <- sensor
+  cv::Mat K, D;  // 3x3, 1x4 (radial-tangential = plumb_bob k1 k2 p1 p2)
+  cv::Mat T_BS;  // 4x4 body <- sensor
   cv::Size size;
 };
 
@@ -120,8 +120,8 @@ int main(int argc, char** argv)
       ++pairs;
     }
     bag.close();
-    std::printf("euroc_to_bag: %d pairs, baseline %.4f m, rectified fx %.1f -> %s\n", pairs, -P1.at<double>(0, 3) / P1.at<double>(0, 0),
-                P0.at<double>(0, 0), output.c_str());
+    std::printf("euroc_to_bag: %d pairs, baseline %.4f m, rectified fx %.1f -> %s\n", pairs,
+                -P1.at<double>(0, 3) / P1.at<double>(0, 0), P0.at<double>(0, 0), output.c_str());
     return pairs > 0 ? 0 : 1;
   }
   catch (const std::exception& e)

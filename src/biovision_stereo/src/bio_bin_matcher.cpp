@@ -39,10 +39,17 @@ cv::Mat toBgr8(const cv::Mat& in, const char* which)
   cv::Mat bgr;
   switch (in.channels())
   {
-    case 1: cv::cvtColor(in, bgr, cv::COLOR_GRAY2BGR); break;
-    case 3: bgr = in; break;
-    case 4: cv::cvtColor(in, bgr, cv::COLOR_BGRA2BGR); break;
-    default: throw std::invalid_argument(std::string("BioBin: ") + which + " image has an unsupported channel count");
+    case 1:
+      cv::cvtColor(in, bgr, cv::COLOR_GRAY2BGR);
+      break;
+    case 3:
+      bgr = in;
+      break;
+    case 4:
+      cv::cvtColor(in, bgr, cv::COLOR_BGRA2BGR);
+      break;
+    default:
+      throw std::invalid_argument(std::string("BioBin: ") + which + " image has an unsupported channel count");
   }
   return bgr;
 }

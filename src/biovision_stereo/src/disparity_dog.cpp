@@ -8,7 +8,12 @@
 namespace biovision_stereo
 {
 DisparityDog::DisparityDog(double sigma1, double sigma2, double tau, double alpha, double beta)
-  : tau_(tau), alpha_(alpha), beta_(beta), narrow_(taps(sigma1)), broad_(taps(sigma2)), broad_recursive_(recursive(sigma2))
+  : tau_(tau),
+    alpha_(alpha),
+    beta_(beta),
+    narrow_(taps(sigma1)),
+    broad_(taps(sigma2)),
+    broad_recursive_(recursive(sigma2))
 {
 }
 

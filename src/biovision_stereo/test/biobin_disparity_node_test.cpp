@@ -86,7 +86,8 @@ public:
   }
 
   template <typename Pred>
-  bool publishUntil(Pred pred, double seconds, double fx = kFx, const std::string& right_info_frame = "stereo_left_optical")
+  bool publishUntil(Pred pred, double seconds, double fx = kFx,
+                    const std::string& right_info_frame = "stereo_left_optical")
   {
     const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(seconds);
     while (ros::ok() && ros::WallTime::now() < end)
@@ -115,10 +116,13 @@ TEST_F(BioBinDisparityNodeTest, PlaneGivesItsDisparityAndPointCloud2ConsumesIt)
                                      static_cast<BioBinDisparityNodeTest*>(this));
   ros::Subscriber ps = nh_.subscribe("stereo/points2", 2, &BioBinDisparityNodeTest::onPoints,
                                      static_cast<BioBinDisparityNodeTest*>(this));
-  ASSERT_TRUE(publishUntil([&] {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return disparity_ && points_;
-  }, 60.0)) << "disparity " << bool(disparity_) << ", points2 " << bool(points_);
+  ASSERT_TRUE(publishUntil(
+      [&] {
+        std::lock_guard<std::mutex> lock(mutex_);
+        return disparity_ && points_;
+      },
+      60.0))
+      << "disparity " << bool(disparity_) << ", points2 " << bool(points_);
 
   std::lock_guard<std::mutex> lock(mutex_);
   EXPECT_NEAR(disparity_->f, kFx, 1e-3);
@@ -162,19 +166,24 @@ TEST_F(BioBinDisparityNodeTest, BadCameraInfoIsReportedAndTheNodeKeepsWorking)
     EXPECT_FALSE(disparity_) << "a disparity was published from a zero focal length";
   }
   // Good input again: disparity comes back.
-  EXPECT_TRUE(publishUntil([&] {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return bool(disparity_);
-  }, 30.0));
+  EXPECT_TRUE(publishUntil(
+      [&] {
+        std::lock_guard<std::mutex> lock(mutex_);
+        return bool(disparity_);
+      },
+      30.0));
   // The right camera_info in its own frame (image_geometry would abort on it): still disparity.
   {
     std::lock_guard<std::mutex> lock(mutex_);
     disparity_.reset();
   }
-  EXPECT_TRUE(publishUntil([&] {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return bool(disparity_);
-  }, 30.0, kFx, "stereo_right_optical")) << "no disparity when the right camera_info uses its own frame";
+  EXPECT_TRUE(publishUntil(
+      [&] {
+        std::lock_guard<std::mutex> lock(mutex_);
+        return bool(disparity_);
+      },
+      30.0, kFx, "stereo_right_optical"))
+      << "no disparity when the right camera_info uses its own frame";
 }
 TEST_F(BioBinDisparityNodeTest, LeftAndRightFocalLengthsThatDifferAreRefusedWithoutAborting)
 {
@@ -183,16 +192,21 @@ TEST_F(BioBinDisparityNodeTest, LeftAndRightFocalLengthsThatDifferAreRefusedWith
   ros::Subscriber ds = nh_.subscribe("stereo/disparity", 2, &BioBinDisparityNodeTest::onDisparity,
                                      static_cast<BioBinDisparityNodeTest*>(this));
   std::atomic<bool> named{false};
-  ros::Subscriber diag = nh_.subscribe<diagnostic_msgs::DiagnosticArray>("/diagnostics", 20, [&](const diagnostic_msgs::DiagnosticArrayConstPtr& m) {
-    for (const auto& s : m->status)
-      if (s.name.find("BioBin disparity") != std::string::npos && s.level == diagnostic_msgs::DiagnosticStatus::ERROR &&
-          s.message.find("not a rectified pair") != std::string::npos)
-        named = true;
-  });
-  ASSERT_TRUE(publishUntil([&] {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return bool(disparity_);
-  }, 60.0)) << "no disparity from a good pair";
+  ros::Subscriber diag = nh_.subscribe<diagnostic_msgs::DiagnosticArray>(
+      "/diagnostics", 20, [&](const diagnostic_msgs::DiagnosticArrayConstPtr& m) {
+        for (const auto& s : m->status)
+          if (s.name.find("BioBin disparity") != std::string::npos &&
+              s.level == diagnostic_msgs::DiagnosticStatus::ERROR &&
+              s.message.find("not a rectified pair") != std::string::npos)
+            named = true;
+      });
+  ASSERT_TRUE(publishUntil(
+      [&] {
+        std::lock_guard<std::mutex> lock(mutex_);
+        return bool(disparity_);
+      },
+      60.0))
+      << "no disparity from a good pair";
   {
     std::lock_guard<std::mutex> lock(mutex_);
     disparity_.reset();
@@ -204,10 +218,13 @@ TEST_F(BioBinDisparityNodeTest, LeftAndRightFocalLengthsThatDifferAreRefusedWith
     EXPECT_FALSE(disparity_) << "a disparity was published from an inconsistent pair";
   }
   right_fx_offset_ = 0.0;
-  EXPECT_TRUE(publishUntil([&] {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return bool(disparity_);
-  }, 30.0)) << "no disparity after the inconsistent pair: did the node abort?";
+  EXPECT_TRUE(publishUntil(
+      [&] {
+        std::lock_guard<std::mutex> lock(mutex_);
+        return bool(disparity_);
+      },
+      30.0))
+      << "no disparity after the inconsistent pair: did the node abort?";
 }
 }  // namespace
 

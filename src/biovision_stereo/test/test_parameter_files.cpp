@@ -9,8 +9,8 @@ using namespace biovision_stereo;
 
 TEST(ParameterFiles, YamlDefaultsEqualTheCfgDefaults)
 {
-  const auto problems =
-      biovision_ros_common::yamlDefaultMismatches<BioBinDisparityConfig>(BIOVISION_CONFIG_DIR "/biobin_disparity.yaml");
+  const auto problems = biovision_ros_common::yamlDefaultMismatches<BioBinDisparityConfig>(BIOVISION_CONFIG_DIR
+                                                                                           "/biobin_disparity.yaml");
   EXPECT_TRUE(problems.empty()) << biovision_ros_common::joinLines(problems);
 }
 

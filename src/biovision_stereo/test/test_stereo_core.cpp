@@ -17,9 +17,9 @@
 #include "biovision_stereo/pixel_descriptor.hpp"
 #include "biovision_common/eval/portable_float_map.hpp"
 
+using biovision_common::DisparityMetrics;
 using biovision_common::MiddleburyDataset;
 using biovision_common::PortableFloatMap;
-using biovision_common::DisparityMetrics;
 using biovision_common::StereoScene;
 
 using namespace biovision_stereo;
@@ -224,12 +224,13 @@ TEST(BioBinMatcher, RejectsBadInputClearly)
   p.max_disparity = 32;
   BioBinMatcher matcher(p);
   const cv::Mat a(100, 120, CV_8UC3, cv::Scalar::all(80));
-  EXPECT_THROW(matcher.compute(a, cv::Mat(100, 110, CV_8UC3)), std::invalid_argument);    // sizes
-  EXPECT_THROW(matcher.compute(a, cv::Mat(100, 120, CV_8UC1)), std::invalid_argument);    // types
-  EXPECT_THROW(matcher.compute(cv::Mat(), a), std::invalid_argument);                     // empty
+  EXPECT_THROW(matcher.compute(a, cv::Mat(100, 110, CV_8UC3)), std::invalid_argument);  // sizes
+  EXPECT_THROW(matcher.compute(a, cv::Mat(100, 120, CV_8UC1)), std::invalid_argument);  // types
+  EXPECT_THROW(matcher.compute(cv::Mat(), a), std::invalid_argument);                   // empty
   EXPECT_THROW(matcher.compute(cv::Mat(100, 120, CV_16UC3), cv::Mat(100, 120, CV_16UC3)), std::invalid_argument);
-  EXPECT_THROW(matcher.compute(cv::Mat(100, 30, CV_8UC3), cv::Mat(100, 30, CV_8UC3)), std::invalid_argument);  // md >= width
-  EXPECT_THROW(matcher.compute(cv::Mat(8, 120, CV_8UC3), cv::Mat(8, 120, CV_8UC3)), std::invalid_argument);    // tiny
+  EXPECT_THROW(matcher.compute(cv::Mat(100, 30, CV_8UC3), cv::Mat(100, 30, CV_8UC3)),
+               std::invalid_argument);  // md >= width
+  EXPECT_THROW(matcher.compute(cv::Mat(8, 120, CV_8UC3), cv::Mat(8, 120, CV_8UC3)), std::invalid_argument);  // tiny
   BioBinParameters bad;
   bad.wavelengths = {8, 4};
   EXPECT_THROW(BioBinMatcher{bad}, std::invalid_argument);

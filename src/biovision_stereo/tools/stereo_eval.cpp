@@ -19,8 +19,8 @@
 #include "biovision_common/eval/middlebury_dataset.hpp"
 #include "biovision_common/tool_options.hpp"
 
-using biovision_common::MiddleburyDataset;
 using biovision_common::DisparityMetrics;
+using biovision_common::MiddleburyDataset;
 using biovision_common::StereoScene;
 
 using namespace biovision_stereo;
@@ -124,9 +124,8 @@ std::map<std::string, Matcher> makeMatchers(std::map<std::string, std::unique_pt
 
 nlohmann::ordered_json metricsJson(const DisparityMetrics& m, double seconds)
 {
-  return {{"bad0.5", m.bad05}, {"bad1.0", m.bad1},     {"bad2.0", m.bad2},
-          {"bad4.0", m.bad4},  {"avgerr", m.avgerr},   {"invalid", m.invalid},
-          {"seconds_per_pair", seconds}};
+  return {{"bad0.5", m.bad05},  {"bad1.0", m.bad1},     {"bad2.0", m.bad2},           {"bad4.0", m.bad4},
+          {"avgerr", m.avgerr}, {"invalid", m.invalid}, {"seconds_per_pair", seconds}};
 }
 }  // namespace
 
@@ -237,8 +236,9 @@ int main(int argc, char** argv)
     means[name] = mean;
     mean_seconds[name] = sec;
   }
-  results["notes"] = "Ratios: ours / peer, same run (time < 1 = faster, bad1.0 < 1 = fewer errors). Data: Middlebury "
-                     "(Scharstein & Szeliski 2002/2003, Scharstein & Pal 2007, Hirschmueller & Scharstein 2007).";
+  results["notes"] =
+      "Ratios: ours / peer, same run (time < 1 = faster, bad1.0 < 1 = fewer errors). Data: Middlebury "
+      "(Scharstein & Szeliski 2002/2003, Scharstein & Pal 2007, Hirschmueller & Scharstein 2007).";
   // Ratios against the peers, same run: time (ours / peer, < 1 = faster) and bad 1.0 (ours / peer).
   auto ratio = [&](const std::string& ours, const std::string& peer) {
     if (!means.count(ours) || !means.count(peer) || mean_seconds[peer] <= 0 || means[peer].bad1 <= 0)

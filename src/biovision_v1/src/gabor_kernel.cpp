@@ -17,8 +17,8 @@ GaborKernel::GaborKernel(double wavelength, double theta, const GaborParameters&
     {
       const double xp = x * c + y * s;   // across the bar (modulation)
       const double yp = -x * s + y * c;  // along the bar
-      envelope.at<double>(y + radius_, x + radius_) =
-          std::exp(-(xp * xp + gamma * gamma * yp * yp) / (2.0 * sigma * sigma));
+      envelope.at<double>(y + radius_,
+                          x + radius_) = std::exp(-(xp * xp + gamma * gamma * yp * yp) / (2.0 * sigma * sigma));
       carrier_cos.at<double>(y + radius_, x + radius_) = std::cos(2.0 * M_PI * xp / wavelength);
       carrier_sin.at<double>(y + radius_, x + radius_) = std::sin(2.0 * M_PI * xp / wavelength);
     }

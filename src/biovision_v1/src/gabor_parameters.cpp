@@ -19,8 +19,7 @@ void GaborParameters::validate() const
       throw std::invalid_argument("GaborParameters: wavelengths must be strictly ascending");
   }
   if (orientations < 4 || orientations > 12)
-    throw std::invalid_argument("GaborParameters: orientations " + std::to_string(orientations) +
-                                " outside [4, 12]");
+    throw std::invalid_argument("GaborParameters: orientations " + std::to_string(orientations) + " outside [4, 12]");
   if (!(sigma_per_wavelength >= 0.2 && sigma_per_wavelength <= 2.0))
     throw std::invalid_argument("GaborParameters: sigma_per_wavelength outside [0.2, 2]");
   if (!(aspect_ratio > 0.0 && aspect_ratio <= 1.0))

@@ -12,25 +12,36 @@ InputImage::InputImage(const cv::Mat& image)
   if (image.empty())
     throw std::invalid_argument("V1 input: empty image");
   if (image.cols < kMinSide || image.rows < kMinSide)
-    throw std::invalid_argument("V1 input: image " + std::to_string(image.cols) + "x" +
-                                std::to_string(image.rows) + " is smaller than the minimum " +
-                                std::to_string(kMinSide) + "x" + std::to_string(kMinSide));
+    throw std::invalid_argument("V1 input: image " + std::to_string(image.cols) + "x" + std::to_string(image.rows) +
+                                " is smaller than the minimum " + std::to_string(kMinSide) + "x" +
+                                std::to_string(kMinSide));
   double scale = 1.0;
   switch (image.depth())
   {
-    case CV_8U: scale = 1.0 / 255.0; break;
-    case CV_16U: scale = 1.0 / 65535.0; break;
+    case CV_8U:
+      scale = 1.0 / 255.0;
+      break;
+    case CV_16U:
+      scale = 1.0 / 65535.0;
+      break;
     case CV_32F:
-    case CV_64F: break;
+    case CV_64F:
+      break;
     default:
       throw std::invalid_argument("V1 input: unsupported pixel depth (use 8U, 16U, 32F or 64F)");
   }
   cv::Mat gray;
   switch (image.channels())
   {
-    case 1: gray = image; break;
-    case 3: cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY); break;
-    case 4: cv::cvtColor(image, gray, cv::COLOR_BGRA2GRAY); break;
+    case 1:
+      gray = image;
+      break;
+    case 3:
+      cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
+      break;
+    case 4:
+      cv::cvtColor(image, gray, cv::COLOR_BGRA2GRAY);
+      break;
     default:
       throw std::invalid_argument("V1 input: unsupported channel count " + std::to_string(image.channels()));
   }

@@ -48,7 +48,8 @@ cv::Mat KeypointDetector::keypointMap(const EndStoppedCells& cells) const
     for (int i = 0; i < n; ++i)
     {
       // Balanced AND: a line leaks into the channels 45 deg away, but never as strongly as itself.
-      const cv::Mat balanced = cv::min(complex[i], crossing[i]) - parameters_.junction_balance * cv::max(complex[i], crossing[i]);
+      const cv::Mat balanced = cv::min(complex[i], crossing[i]) -
+                               parameters_.junction_balance * cv::max(complex[i], crossing[i]);
       junction += cv::max(balanced, 0.0);
     }
     k += parameters_.junction_weight * junction;
@@ -109,8 +110,8 @@ std::vector<Keypoint> KeypointDetector::detect(const ScaleResponses& responses, 
         }
       }
       const cv::Point2f p = responses.toImage(cv::Point2f(x + ox, y + oy));
-      keypoints.push_back({p.x, p.y, static_cast<float>(responses.wavelength), v,
-                           static_cast<float>(best_i * M_PI / n)});
+      keypoints.push_back(
+          {p.x, p.y, static_cast<float>(responses.wavelength), v, static_cast<float>(best_i * M_PI / n)});
     }
   return keypoints;
 }

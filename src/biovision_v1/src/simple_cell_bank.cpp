@@ -111,7 +111,8 @@ void SimpleCellBank::plan(const cv::Size& image_size)
         {
           const int wy = (-y + p.padded.height) % p.padded.height;
           const int wx = (-x + p.padded.width) % p.padded.width;
-          h.at<cv::Vec2f>(wy, wx) = cv::Vec2f(kernel.even().at<float>(y + r, x + r), kernel.odd().at<float>(y + r, x + r));
+          h.at<cv::Vec2f>(wy, wx) = cv::Vec2f(kernel.even().at<float>(y + r, x + r),
+                                              kernel.odd().at<float>(y + r, x + r));
         }
       cv::Mat spectrum;
       cv::dft(h, spectrum, cv::DFT_COMPLEX_OUTPUT);

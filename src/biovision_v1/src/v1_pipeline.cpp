@@ -9,10 +9,10 @@
 namespace biovision_v1
 {
 V1Pipeline::V1Pipeline(const Parameters& parameters)
-  : parameters_(parameters)
-  , bank_(parameters.gabor)
-  , keypoint_detector_(parameters.keypoints)
-  , line_edge_detector_(parameters.line_edges)
+  : parameters_(parameters),
+    bank_(parameters.gabor),
+    keypoint_detector_(parameters.keypoints),
+    line_edge_detector_(parameters.line_edges)
 {
   if (!(parameters.end_stop_offset >= 0.2 && parameters.end_stop_offset <= 2.0))
     throw std::invalid_argument("V1Pipeline: end_stop_offset outside [0.2, 2]");

@@ -9,8 +9,8 @@ using namespace biovision_v1;
 
 TEST(ParameterFiles, YamlDefaultsEqualTheCfgDefaults)
 {
-  const auto problems =
-      biovision_ros_common::yamlDefaultMismatches<V1CellsConfig>(BIOVISION_CONFIG_DIR "/v1_cells.yaml");
+  const auto problems = biovision_ros_common::yamlDefaultMismatches<V1CellsConfig>(BIOVISION_CONFIG_DIR
+                                                                                   "/v1_cells.yaml");
   EXPECT_TRUE(problems.empty()) << biovision_ros_common::joinLines(problems);
 }
 

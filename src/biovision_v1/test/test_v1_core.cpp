@@ -98,8 +98,8 @@ TEST(SimpleCellBank, EqualsDirectConvolutionAtEveryGrid)
     // Decimation follows lambda / d >= min_grid.
     if (min_grid == 2.0)
     {
-      EXPECT_EQ(ours[0].decimation, 2);  // lambda 4
-      EXPECT_EQ(ours[6].decimation, 16); // lambda 32
+      EXPECT_EQ(ours[0].decimation, 2);   // lambda 4
+      EXPECT_EQ(ours[6].decimation, 16);  // lambda 32
       EXPECT_EQ(ours[0].gridSize(), cv::Size(87, 66));
     }
   }

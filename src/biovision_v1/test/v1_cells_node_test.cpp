@@ -21,10 +21,7 @@ namespace
 class V1CellsNodeTest : public ::testing::Test
 {
 public:
-  void SetUp() override
-  {
-    image_pub_ = nh_.advertise<sensor_msgs::Image>("camera/image", 5);
-  }
+  void SetUp() override { image_pub_ = nh_.advertise<sensor_msgs::Image>("camera/image", 5); }
 
 protected:
   // L-corner of a bright square on grey, 160x120, corner at (79.5, 59.5).
@@ -44,11 +41,13 @@ protected:
   {
     const size_t before = keypoints.count();
     uint32_t seq = 0;
-    waitFor([&] {
-      image_pub_.publish(cornerImage(++seq));
-      ros::WallDuration(0.1).sleep();
-      return keypoints.count() > before;
-    }, 30.0);
+    waitFor(
+        [&] {
+          image_pub_.publish(cornerImage(++seq));
+          ros::WallDuration(0.1).sleep();
+          return keypoints.count() > before;
+        },
+        30.0);
     return keypoints.count() > before ? keypoints.last() : nullptr;
   }
 

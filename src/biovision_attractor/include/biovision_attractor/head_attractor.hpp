@@ -10,10 +10,10 @@ namespace biovision_attractor
 /// A salient thing seen this frame, as the head controller needs it.
 struct SeenRegion
 {
-  double pan = 0.0;    ///< head-centred direction of its peak [rad, + = left]
-  double tilt = 0.0;   ///< [rad, + = down]
-  double peak = 0.0;   ///< saliency [0, 1]
-  double area = 0.0;   ///< [px^2]
+  double pan = 0.0;   ///< head-centred direction of its peak [rad, + = left]
+  double tilt = 0.0;  ///< [rad, + = down]
+  double peak = 0.0;  ///< saliency [0, 1]
+  double area = 0.0;  ///< [px^2]
 };
 
 /// Attractor dynamics for the head's pan (thesis §4.7), read so that it does what the thesis describes
@@ -48,13 +48,13 @@ public:
 
   struct Output
   {
-    double rate = 0.0;            ///< [rad/s] after limits
-    double command = 0.0;         ///< pan position command [rad], inside the limits
-    double tilt_rate = 0.0;       ///< [rad/s]
-    double tilt_command = 0.0;    ///< tilt position command [rad], inside the tilt limits
-    double tilt_target = 0.0;     ///< the tilt the dynamics head for [rad]
-    double target = 0.0;          ///< angle the dynamics head for (the dominant attractor), NaN if none
-    bool saccade = false;         ///< the command jumps straight to the target
+    double rate = 0.0;          ///< [rad/s] after limits
+    double command = 0.0;       ///< pan position command [rad], inside the limits
+    double tilt_rate = 0.0;     ///< [rad/s]
+    double tilt_command = 0.0;  ///< tilt position command [rad], inside the tilt limits
+    double tilt_target = 0.0;   ///< the tilt the dynamics head for [rad]
+    double target = 0.0;        ///< angle the dynamics head for (the dominant attractor), NaN if none
+    bool saccade = false;       ///< the command jumps straight to the target
     std::vector<double> attraction, repulsion, forcelet;  ///< per section
   };
 
@@ -113,12 +113,12 @@ private:
   HeadAttractorParameters p_;
   Behaviour behaviour_ = Behaviour::kExplore;
   double track_angle_ = 0.0;
-  std::vector<double> saliency_;   // A_s (remembered for out-of-view sections)
-  std::vector<double> direction_;  // where in each section its strongest region was seen [rad]
-  std::vector<double> tilt_;       // and at which tilt [rad]
-  std::vector<double> repulsion_;  // A_r in [0, 1]; 1 = no repulsion
-  double last_salient_time_;       // [s] kNever until the first update
-  int selected_;  // the attractor the head is going to (kept while it stays competitive), -1 = none
+  std::vector<double> saliency_;     // A_s (remembered for out-of-view sections)
+  std::vector<double> direction_;    // where in each section its strongest region was seen [rad]
+  std::vector<double> tilt_;         // and at which tilt [rad]
+  std::vector<double> repulsion_;    // A_r in [0, 1]; 1 = no repulsion
+  double last_salient_time_;         // [s] kNever until the first update
+  int selected_;                     // the attractor the head is going to (kept while it stays competitive), -1 = none
   std::vector<double> habituation_;  // per section, 0..0.9: how much a fixated target has lost its pull
 };
 }  // namespace biovision_attractor

@@ -81,7 +81,7 @@ void HeadControllerNodelet::onInit()
   // The attractor parameters from YAML arrive through dynamic_reconfigure's server (it reads ~).
   applied_config_ = HeadControllerConfig::__getDefault__();
   reconfigure_server_ = std::make_unique<dynamic_reconfigure::Server<HeadControllerConfig>>(reconfigure_mutex_,
-                                                                                           getPrivateNodeHandle());
+                                                                                            getPrivateNodeHandle());
   reconfigure_server_->setCallback([this](HeadControllerConfig& c, uint32_t level) { reconfigure(c, level); });
 
   pan_pub_ = nh.advertise<std_msgs::Float64>(settings_.pan_joint + "/command", 10);
@@ -116,7 +116,8 @@ void HeadControllerNodelet::readJointLimits()
   if (!model.initParam("robot_description"))
   {
     NODELET_WARN("no robot_description: pan limits %s, tilt limits %s rad (defaults)",
-                 interval(base_.pan_lower, base_.pan_upper).c_str(), interval(base_.tilt_lower, base_.tilt_upper).c_str());
+                 interval(base_.pan_lower, base_.pan_upper).c_str(),
+                 interval(base_.tilt_lower, base_.tilt_upper).c_str());
     return;
   }
   if (auto j = model.getJoint(settings_.pan_joint); j && j->limits)
@@ -163,7 +164,8 @@ void HeadControllerNodelet::reconfigure(HeadControllerConfig& config, uint32_t /
   }
   catch (const std::invalid_argument& e)
   {
-    diagnostics_.health().reportError(getName(), std::string("rejected parameters (keeping the previous ones): ") + e.what());
+    diagnostics_.health().reportError(getName(),
+                                      std::string("rejected parameters (keeping the previous ones): ") + e.what());
     config = applied_config_;  // the server then reports the parameters in use
   }
 }
@@ -197,7 +199,8 @@ void HeadControllerNodelet::onJointStates(const sensor_msgs::JointStateConstPtr&
   if (!msg->position.empty() && msg->position.size() != msg->name.size())
   {
     diagnostics_.health().reportError(getName(), "ignoring joint_states with " + std::to_string(msg->name.size()) +
-                                                     " names and " + std::to_string(msg->position.size()) + " positions");
+                                                     " names and " + std::to_string(msg->position.size()) +
+                                                     " positions");
     return;
   }
   std::string bad_joint;
@@ -230,7 +233,8 @@ void HeadControllerNodelet::onCameraInfo(const sensor_msgs::CameraInfoConstPtr& 
   }
 }
 
-bool HeadControllerNodelet::onSetMode(biovision_msgs::SetHeadMode::Request& req, biovision_msgs::SetHeadMode::Response& res)
+bool HeadControllerNodelet::onSetMode(biovision_msgs::SetHeadMode::Request& req,
+                                      biovision_msgs::SetHeadMode::Response& res)
 {
   std::lock_guard<std::mutex> lock(mutex_);
   HeadAttractor::Behaviour behaviour;
@@ -245,8 +249,9 @@ bool HeadControllerNodelet::onSetMode(biovision_msgs::SetHeadMode::Request& req,
   {
     // "region:<rank>" tracks the direction of that salient region; labels need recognition.
     unsigned rank = 0;
-    if (req.target.rfind("region:", 0) != 0 || !(std::istringstream(req.target.substr(7)) >> rank) || !latest_regions_ ||
-        rank >= latest_regions_->regions.size() || !std::isfinite(latest_regions_->regions[rank].pan))
+    if (req.target.rfind("region:", 0) != 0 || !(std::istringstream(req.target.substr(7)) >> rank) ||
+        !latest_regions_ || rank >= latest_regions_->regions.size() ||
+        !std::isfinite(latest_regions_->regions[rank].pan))
     {
       res.success = false;
       res.message = "track needs target 'region:<rank>' of a current salient region";
@@ -351,7 +356,8 @@ void HeadControllerNodelet::details(diagnostic_updater::DiagnosticStatusWrapper&
   if (joints_received_.isZero())
   {
     status.add("joint state age [s]", "none yet");
-    status.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN, "holding: no joint_states of " + settings_.pan_joint + " yet");
+    status.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN,
+                        "holding: no joint_states of " + settings_.pan_joint + " yet");
     return;
   }
   const double age = (now - joints_received_).toSec();

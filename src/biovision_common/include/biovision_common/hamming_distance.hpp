@@ -10,10 +10,10 @@ namespace biovision_common
 /// The instruction sets a Hamming distance can be computed with, slowest first.
 enum class HammingPath
 {
-  Scalar,   ///< bit-twiddling count: the reference every other path is tested against
-  Popcnt,   ///< one POPCNT per 64-bit word
-  Avx2,     ///< nibble look-up with VPSHUFB, 256 bits at a time (Mula et al. 2018)
-  Avx512,   ///< VPOPCNTQ (AVX-512 VPOPCNTDQ), 512 bits at a time
+  Scalar,  ///< bit-twiddling count: the reference every other path is tested against
+  Popcnt,  ///< one POPCNT per 64-bit word
+  Avx2,    ///< nibble look-up with VPSHUFB, 256 bits at a time (Mula et al. 2018)
+  Avx512,  ///< VPOPCNTQ (AVX-512 VPOPCNTDQ), 512 bits at a time
 };
 
 std::string toString(HammingPath path);

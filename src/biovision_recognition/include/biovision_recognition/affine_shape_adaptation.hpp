@@ -21,8 +21,8 @@ public:
   {
     int iterations = 4;               ///< 0 = isotropic (identity). 0..16
     double window_wavelengths = 1.5;  ///< Gaussian sigma of the integration window [keypoint wavelengths]. (0, 8]
-    int level_offset = 1;             ///< gradients on pyramid level base + offset (derivative step lambda 2^(offset/2) / 4). 0..4
-    double max_anisotropy = 4.0;      ///< the ratio of S's eigenvalues is capped here (an edge has none). [1, 16]
+    int level_offset = 1;  ///< gradients on pyramid level base + offset (derivative step lambda 2^(offset/2) / 4). 0..4
+    double max_anisotropy = 4.0;  ///< the ratio of S's eigenvalues is capped here (an edge has none). [1, 16]
   };
 
   /// Throws std::invalid_argument naming the offending field.

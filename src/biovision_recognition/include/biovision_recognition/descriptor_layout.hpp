@@ -34,10 +34,10 @@ struct DescriptorLayout
 
   std::vector<int> scales{0, 1, 2, 3, 4, 5, 6};  ///< j, ascending, >= 0
   int orientations = 8;
-  double patch_wavelengths = 8.0;  ///< patch side / keypoint wavelength. > 0
-  int pooling_diameter = 4;        ///< [level px]
-  int pooling_step = 2;            ///< [level px]
-  int phases = 4;                  ///< 2: even, odd (signed maximum); 4: also -even, -odd (OFF half-waves)
+  double patch_wavelengths = 8.0;           ///< patch side / keypoint wavelength. > 0
+  int pooling_diameter = 4;                 ///< [level px]
+  int pooling_step = 2;                     ///< [level px]
+  int phases = 4;                           ///< 2: even, odd (signed maximum); 4: also -even, -odd (OFF half-waves)
   AffineShapeAdaptation::Parameters shape;  ///< iterations = 0: square grid (the source's)
 
   /// Pooling fields per side of scale j.

@@ -17,9 +17,9 @@ class GeometricVerifier
 public:
   struct Parameters
   {
-    double inlier_distance = 4.0;   ///< reprojection error of an inlier [px of the query image]. > 0
-    int min_inliers = 5;            ///< the source's rule: at least 5 matches. >= 2
-    double min_scale = 0.25;        ///< plausible template -> query magnification
+    double inlier_distance = 4.0;  ///< reprojection error of an inlier [px of the query image]. > 0
+    int min_inliers = 5;           ///< the source's rule: at least 5 matches. >= 2
+    double min_scale = 0.25;       ///< plausible template -> query magnification
     double max_scale = 4.0;
     double max_rotation_degrees = 30.0;  ///< |in-plane rotation| of the transform. (0, 180]
     int max_iterations = 500;
@@ -31,7 +31,7 @@ public:
     bool accepted = false;
     int inliers = 0;
     cv::Matx23d transform = cv::Matx23d::eye();  ///< template -> query
-    std::vector<uint8_t> inlier_mask;             ///< per match
+    std::vector<uint8_t> inlier_mask;            ///< per match
   };
 
   GeometricVerifier() = default;

@@ -9,11 +9,11 @@
 namespace biovision_recognition
 {
 // The Hamming kernel lives in biovision_common; its path type is part of this API.
-using biovision_common::HammingPath;
 using biovision_common::availableHammingPaths;
 using biovision_common::bestHammingPath;
 using biovision_common::hammingDistanceReference;
 using biovision_common::hammingDistances;
+using biovision_common::HammingPath;
 using biovision_common::toString;
 
 /// One query-to-library match.

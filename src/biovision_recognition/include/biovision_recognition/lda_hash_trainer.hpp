@@ -25,11 +25,11 @@ public:
   struct Parameters
   {
     int bits = 128;
-    int whitening_rank = 512;    ///< eigenpairs of Sigma_N kept. >= bits
-    double ridge = 1e-3;         ///< added to the eigenvalues, relative to the largest
+    int whitening_rank = 512;         ///< eigenpairs of Sigma_N kept. >= bits
+    double ridge = 1e-3;              ///< added to the eigenvalues, relative to the largest
     int threshold_candidates = 3000;  ///< K
-    int exact_limit = 2000;      ///< exact eigen-decomposition up to this many features
-    int power_iterations = 3;    ///< randomised subspace iterations
+    int exact_limit = 2000;           ///< exact eigen-decomposition up to this many features
+    int power_iterations = 3;         ///< randomised subspace iterations
     unsigned seed = 1;
   };
   using Matrix = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;

@@ -34,10 +34,7 @@ public:
 
 private:
   static constexpr int kSubstringBits = 16;
-  uint16_t substring(const uint64_t* code, int s) const
-  {
-    return static_cast<uint16_t>(code[s / 4] >> (16 * (s % 4)));
-  }
+  uint16_t substring(const uint64_t* code, int s) const { return static_cast<uint16_t>(code[s / 4] >> (16 * (s % 4))); }
   const std::vector<uint16_t>& flipMasks(int radius) const;
 
   BinaryCodeSet library_;
@@ -45,7 +42,7 @@ private:
   std::vector<std::vector<uint32_t>> offsets_;  // per table: bucket b holds ids [offsets[b], offsets[b + 1])
   std::vector<std::vector<uint32_t>> ids_;
   mutable std::vector<std::vector<uint16_t>> flip_masks_;  // by radius: every 16-bit mask with <= r ones
-  mutable std::vector<uint32_t> seen_;                    // visit stamps, one per library code
+  mutable std::vector<uint32_t> seen_;                     // visit stamps, one per library code
   mutable uint32_t stamp_ = 0;
 };
 }  // namespace biovision_recognition

@@ -24,9 +24,9 @@ struct SearchRegion
 struct RecognizedObject
 {
   std::string label;
-  double score = 0.0;       ///< verified matches / query keypoints in the region, in [0, 1]
-  int matches = 0;          ///< geometrically verified matches
-  cv::Rect box;             ///< the learned view's outline mapped into the image, clipped
+  double score = 0.0;  ///< verified matches / query keypoints in the region, in [0, 1]
+  int matches = 0;     ///< geometrically verified matches
+  cv::Rect box;        ///< the learned view's outline mapped into the image, clipped
   uint32_t region_rank = 0;
 };
 
@@ -40,13 +40,13 @@ class ObjectRecognizer
 public:
   struct Parameters
   {
-    std::vector<int> keypoint_levels{1, 3, 5};   ///< pyramid levels of query keypoints (lambda 5.7, 11.3, 22.6)
+    std::vector<int> keypoint_levels{1, 3, 5};  ///< pyramid levels of query keypoints (lambda 5.7, 11.3, 22.6)
     std::vector<int> template_levels{0, 1, 2, 3, 4, 5, 6};  ///< levels of learned keypoints: +-1 level of slack
-    int max_distance = 24;         ///< Hamming radius [bits of 128]
-    int max_keypoints = 400;       ///< per region, strongest first
-    int region_margin = 15;        ///< context added around a region for the filters [px] (the source's 15)
-    int min_region_side = 16;      ///< smaller regions are skipped [px]
-    double time_budget_ms = 0.0;   ///< stop starting new regions after this long; 0 = no limit
+    int max_distance = 24;                                  ///< Hamming radius [bits of 128]
+    int max_keypoints = 400;                                ///< per region, strongest first
+    int region_margin = 15;       ///< context added around a region for the filters [px] (the source's 15)
+    int min_region_side = 16;     ///< smaller regions are skipped [px]
+    double time_budget_ms = 0.0;  ///< stop starting new regions after this long; 0 = no limit
     /// Use the multi-index hash when the library has at least this many codes and the hash would
     /// verify under 1% of them (MultiIndexHash::candidateFraction); otherwise SIMD brute force, which
     /// matcher_bench measured faster at the default radius 24 even with 2 million codes.
@@ -57,7 +57,7 @@ public:
   struct Statistics
   {
     int regions_processed = 0;
-    int regions_skipped = 0;   ///< too small, empty, or over the time budget
+    int regions_skipped = 0;  ///< too small, empty, or over the time budget
     int keypoints = 0;
     double milliseconds = 0.0;
   };

@@ -24,9 +24,9 @@ public:
   struct Parameters
   {
     std::vector<int> levels{0, 1, 2, 3, 4};  ///< pyramid levels keypoints are detected at
-    int max_pairs = 3000;                   ///< per image pair, of each kind
-    double border_wavelengths = 1.0;        ///< the true correspondence must lie this far inside B
-    double min_negative_separation = 4.0;   ///< [wavelengths]
+    int max_pairs = 3000;                    ///< per image pair, of each kind
+    double border_wavelengths = 1.0;         ///< the true correspondence must lie this far inside B
+    double min_negative_separation = 4.0;    ///< [wavelengths]
     unsigned seed = 7;
   };
 

@@ -26,14 +26,14 @@ class V1FeaturePyramid
 public:
   struct Parameters
   {
-    int orientations = 8;              ///< N_theta. 4..12
+    int orientations = 8;  ///< N_theta. 4..12
     double sigma_per_wavelength = 0.56;
     double aspect_ratio = 0.5;
     double support_sigmas = 3.5;
-    int max_levels = 16;               ///< half-octave levels kept. >= 1
-    int min_level_size = 12;           ///< stop when a level's smaller side drops below this [px]
-    int pooling_diameter = 4;          ///< disk the pooled maps take the maximum over [level px]. 1..16
-    int pooling_phases = 4;            ///< 2: max of the signed even/odd responses; 4: also max of their negatives
+    int max_levels = 16;       ///< half-octave levels kept. >= 1
+    int min_level_size = 12;   ///< stop when a level's smaller side drops below this [px]
+    int pooling_diameter = 4;  ///< disk the pooled maps take the maximum over [level px]. 1..16
+    int pooling_phases = 4;    ///< 2: max of the signed even/odd responses; 4: also max of their negatives
     biovision_v1::KeypointDetector::Parameters keypoints;
   };
 

@@ -140,7 +140,8 @@ bool RecognitionNodelet::position(const cv::Rect& box, const cv::Size& image_siz
   }
   // The disparity may be at another resolution than the image.
   const double sx = double(d.cols) / image_size.width, sy = double(d.rows) / image_size.height;
-  const cv::Rect r = cv::Rect(cvRound(box.x * sx), cvRound(box.y * sy), cvRound(box.width * sx), cvRound(box.height * sy)) &
+  const cv::Rect r = cv::Rect(cvRound(box.x * sx), cvRound(box.y * sy), cvRound(box.width * sx),
+                              cvRound(box.height * sy)) &
                      cv::Rect(0, 0, d.cols, d.rows);
   std::vector<float> values;
   for (int y = r.y; y < r.y + r.height; ++y)
@@ -170,13 +171,15 @@ void RecognitionNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
   cv::Mat bgr, gray;
   try
   {
-    bgr = biovision_ros_common::ImageMessageConverter::toCv(*msg, biovision_ros_common::ImageMessageConverter::Depth::Keep);
+    bgr = biovision_ros_common::ImageMessageConverter::toCv(*msg,
+                                                            biovision_ros_common::ImageMessageConverter::Depth::Keep);
     gray = biovision_v1::InputImage(bgr).gray();
   }
   catch (const std::exception& ex)
   {
     diagnostics_.health().reportError(getName(), "dropping image " + std::to_string(msg->width) + "x" +
-                                       std::to_string(msg->height) + " '" + msg->encoding + "': " + ex.what());
+                                                     std::to_string(msg->height) + " '" + msg->encoding +
+                                                     "': " + ex.what());
     return;
   }
 
@@ -210,8 +213,8 @@ void RecognitionNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
       diagnostics_.health().reportError(getName(), std::string("recognition failed: ") + ex.what());
       return;
     }
-    const bool disparity_recent =
-        disparity_ && std::abs((disparity_->header.stamp - msg->header.stamp).toSec()) <= max_input_age_;
+    const bool disparity_recent = disparity_ &&
+                                  std::abs((disparity_->header.stamp - msg->header.stamp).toSec()) <= max_input_age_;
     for (const auto& f : found)
     {
       biovision_msgs::RecognizedObject o;
@@ -279,7 +282,8 @@ bool RecognitionNodelet::learn(biovision_msgs::LearnObject::Request& req, biovis
   }
   if (last_gray_.empty())
   {
-    res.message = "no image received yet (the node subscribes to images while `objects` has a subscriber, or with ~lazy false)";
+    res.message =
+        "no image received yet (the node subscribes to images while `objects` has a subscriber, or with ~lazy false)";
     return true;
   }
   try
@@ -288,15 +292,17 @@ bool RecognitionNodelet::learn(biovision_msgs::LearnObject::Request& req, biovis
     ObjectView view = recognizer_->describe(last_gray_, box, req.label);
     if (static_cast<int>(view.keypoints.size()) < recognizer_->parameters().verifier.min_inliers)
     {
-      res.message = "only " + std::to_string(view.keypoints.size()) + " keypoints in the box: too little texture to learn";
+      res.message = "only " + std::to_string(view.keypoints.size()) +
+                    " keypoints in the box: too little texture to learn";
       return true;
     }
     res.keypoints = static_cast<uint32_t>(view.keypoints.size());
     memory_->addView(std::move(view));
     std::string error;
     res.success = saveMemory(error);
-    res.message = res.success ? "learned view " + std::to_string(memory_->viewCount(req.label)) + " of '" + req.label + "'"
-                              : "learned, but not saved: " + error;
+    res.message = res.success
+                      ? "learned view " + std::to_string(memory_->viewCount(req.label)) + " of '" + req.label + "'"
+                      : "learned, but not saved: " + error;
   }
   catch (const std::exception& e)
   {
@@ -316,7 +322,8 @@ bool RecognitionNodelet::forget(biovision_msgs::ForgetObject::Request& req, biov
   }
   std::string error;
   res.success = saveMemory(error);
-  res.message = "forgot " + std::to_string(removed) + " views of '" + req.label + "'" + (res.success ? "" : "; not saved: " + error);
+  res.message = "forgot " + std::to_string(removed) + " views of '" + req.label + "'" +
+                (res.success ? "" : "; not saved: " + error);
   return true;
 }
 

@@ -16,14 +16,14 @@ namespace biovision_ros_common
 /// What a nodelet's diagnostics say, beyond the shared error state and output rate.
 struct DiagnosticsOptions
 {
-  std::string status_name;             ///< the status's name, e.g. "V1 cells"
-  std::string rate_topic;              ///< the output whose rate is watched
-  double default_max_rate = 100.0;     ///< [Hz] default of ~diagnostics_max_rate
+  std::string status_name;          ///< the status's name, e.g. "V1 cells"
+  std::string rate_topic;           ///< the output whose rate is watched
+  double default_max_rate = 100.0;  ///< [Hz] default of ~diagnostics_max_rate
   std::string idle_message = "idle: nobody subscribes";
   std::string working_message = "processing";
-  std::function<bool()> idle;          ///< true while nobody listens (lazy nodelets); empty = never idle
+  std::function<bool()> idle;  ///< true while nobody listens (lazy nodelets); empty = never idle
   std::function<void(diagnostic_updater::DiagnosticStatusWrapper&)> details;  ///< the nodelet's own keys
-  std::function<void()> on_tick;       ///< runs before each update (watchdogs)
+  std::function<void()> on_tick;                                              ///< runs before each update (watchdogs)
 };
 
 /// The diagnostics every BioVision nodelet publishes the same way: one status (ERROR for a while after bad

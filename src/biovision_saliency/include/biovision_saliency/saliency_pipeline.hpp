@@ -21,12 +21,12 @@ namespace biovision_saliency
 /// What SaliencyPipeline computes for one frame.
 struct SaliencyResult
 {
-  cv::Mat colour, disparity, motion;  ///< normalised channels at working resolution, CV_32F [0, 1] (empty if absent)
-  cv::Mat map;                        ///< fused saliency, CV_32F [0, 1], working resolution
-  cv::Mat thresholded;                ///< CV_8U 255 where map >= threshold
-  std::vector<SalientRegion> regions; ///< in Focus-of-Attention order (highest priority first)
-  cv::Point2f global_flow;            ///< ego-motion flow removed from the motion channel [working px/frame]
-  double scale = 1.0;                 ///< full-resolution px per working px
+  cv::Mat colour, disparity, motion;   ///< normalised channels at working resolution, CV_32F [0, 1] (empty if absent)
+  cv::Mat map;                         ///< fused saliency, CV_32F [0, 1], working resolution
+  cv::Mat thresholded;                 ///< CV_8U 255 where map >= threshold
+  std::vector<SalientRegion> regions;  ///< in Focus-of-Attention order (highest priority first)
+  cv::Point2f global_flow;             ///< ego-motion flow removed from the motion channel [working px/frame]
+  double scale = 1.0;                  ///< full-resolution px per working px
 };
 
 /// Colour + disparity + motion saliency with Focus-of-Attention and Inhibition-of-Return (thesis

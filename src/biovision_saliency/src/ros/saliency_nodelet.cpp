@@ -76,7 +76,8 @@ void SaliencyNodelet::reconfigure(SaliencyConfig& c, uint32_t /*level*/)
   }
   catch (const std::invalid_argument& e)
   {
-    diagnostics_.health().reportError(getName(), std::string("rejected parameters (keeping the previous ones): ") + e.what());
+    diagnostics_.health().reportError(getName(),
+                                      std::string("rejected parameters (keeping the previous ones): ") + e.what());
     std::lock_guard<std::mutex> lock(state_mutex_);
     if (!pipeline_)
       pipeline_ = std::make_unique<SaliencyPipeline>(SaliencyParameters());
@@ -165,7 +166,8 @@ void SaliencyNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
   catch (const std::exception& ex)
   {
     diagnostics_.health().reportError(getName(), "dropping image " + std::to_string(msg->width) + "x" +
-                                       std::to_string(msg->height) + " '" + msg->encoding + "': " + ex.what());
+                                                     std::to_string(msg->height) + " '" + msg->encoding +
+                                                     "': " + ex.what());
     return;
   }
   last_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

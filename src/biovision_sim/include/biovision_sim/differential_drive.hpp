@@ -15,13 +15,13 @@ class DifferentialDrive
 public:
   struct Limits
   {
-    double max_linear = 1.2;        ///< [m/s] (Pioneer 3DX: 1.2 m/s)
-    double max_angular = 5.24;      ///< [rad/s] (300 deg/s)
-    double linear_accel = 0.3;      ///< [m/s^2] (Pioneer 3DX default 300 mm/s^2)
-    double angular_accel = 1.745;   ///< [rad/s^2] (100 deg/s^2)
-    double radius = 0.26;           ///< footprint [m]
-    double wheel_radius = 0.0975;   ///< [m]
-    double track = 0.33;            ///< wheel separation [m]
+    double max_linear = 1.2;       ///< [m/s] (Pioneer 3DX: 1.2 m/s)
+    double max_angular = 5.24;     ///< [rad/s] (300 deg/s)
+    double linear_accel = 0.3;     ///< [m/s^2] (Pioneer 3DX default 300 mm/s^2)
+    double angular_accel = 1.745;  ///< [rad/s^2] (100 deg/s^2)
+    double radius = 0.26;          ///< footprint [m]
+    double wheel_radius = 0.0975;  ///< [m]
+    double track = 0.33;           ///< wheel separation [m]
   };
 
   DifferentialDrive(const Limits& limits, double x = 0, double y = 0, double yaw = 0);

@@ -16,8 +16,8 @@ public:
   struct Link
   {
     Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();  ///< joint origin in the parent link
-    std::string joint;                                          ///< "" for a fixed joint
-    Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();            ///< revolute axis in the joint frame
+    std::string joint;                                         ///< "" for a fixed joint
+    Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();           ///< revolute axis in the joint frame
   };
 
   void append(const Link& link) { links_.push_back(link); }

@@ -42,9 +42,9 @@ private:
     int texture;
   };
 
-  void addQuad(const Eigen::Vector3f& p0, const Eigen::Vector3f& p1, const Eigen::Vector3f& p2, const Eigen::Vector3f& p3,
-               const Eigen::Vector2f& t0, const Eigen::Vector2f& t1, const Eigen::Vector2f& t2, const Eigen::Vector2f& t3,
-               int texture);
+  void addQuad(const Eigen::Vector3f& p0, const Eigen::Vector3f& p1, const Eigen::Vector3f& p2,
+               const Eigen::Vector3f& p3, const Eigen::Vector2f& t0, const Eigen::Vector2f& t1,
+               const Eigen::Vector2f& t2, const Eigen::Vector2f& t3, int texture);
   void addBox(const World::Object& o);
   void addCylinder(const World::Object& o);
 

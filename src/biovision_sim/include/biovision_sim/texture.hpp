@@ -23,7 +23,7 @@ public:
     double feature = 0.1;               ///< checker cell / stripe width / noise blob size / brick height [m]
     double contrast = 1.0;              ///< noise amplitude, 0..1
     unsigned seed = 1;
-    std::string file;                   ///< for "image"
+    std::string file;  ///< for "image"
   };
 
   explicit Texture(const Spec& spec);

@@ -19,12 +19,12 @@ public:
   struct Object
   {
     std::string label;
-    std::string shape;                ///< "box" or "cylinder"
+    std::string shape;                  ///< "box" or "cylinder"
     Eigen::Vector3d position{0, 0, 0};  ///< centre [m]
-    double yaw = 0.0;                 ///< about z [rad]
-    Eigen::Vector3d size{1, 1, 1};    ///< box: x, y, z extents; cylinder: 2r, 2r, height [m]
-    int texture = 0;                  ///< index into textures()
-    bool obstacle = true;             ///< the base collides with it (its footprint)
+    double yaw = 0.0;                   ///< about z [rad]
+    Eigen::Vector3d size{1, 1, 1};      ///< box: x, y, z extents; cylinder: 2r, 2r, height [m]
+    int texture = 0;                    ///< index into textures()
+    bool obstacle = true;               ///< the base collides with it (its footprint)
   };
 
   /// Parses a YAML world file. Throws std::runtime_error naming the file and line of the problem.

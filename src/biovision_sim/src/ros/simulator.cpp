@@ -88,8 +88,8 @@ double baselineOf(const KinematicChain& left, const KinematicChain& right)
   return (left.evaluate({}, {}).inverse() * right.evaluate({}, {})).translation().norm();
 }
 
-geometry_msgs::TransformStamped toTransform(const Eigen::Isometry3d& t, const std::string& parent, const std::string& child,
-                                            const ros::Time& stamp)
+geometry_msgs::TransformStamped toTransform(const Eigen::Isometry3d& t, const std::string& parent,
+                                            const std::string& child, const ros::Time& stamp)
 {
   geometry_msgs::TransformStamped m;
   m.header.stamp = stamp;
@@ -201,10 +201,12 @@ void Simulator::subscribe()
     if (pan_.command(m->data))
       ROS_WARN_THROTTLE(2.0, "sim: pan command %.3f rad clamped to [%.3f, %.3f]", m->data, pan_.lower(), pan_.upper());
   });
-  tilt_sub_ = nh_.subscribe<std_msgs::Float64>("head_tilt_joint/command", 10, [this](const std_msgs::Float64ConstPtr& m) {
-    if (tilt_.command(m->data))
-      ROS_WARN_THROTTLE(2.0, "sim: tilt command %.3f rad clamped to [%.3f, %.3f]", m->data, tilt_.lower(), tilt_.upper());
-  });
+  tilt_sub_ = nh_.subscribe<std_msgs::Float64>(
+      "head_tilt_joint/command", 10, [this](const std_msgs::Float64ConstPtr& m) {
+        if (tilt_.command(m->data))
+          ROS_WARN_THROTTLE(2.0, "sim: tilt command %.3f rad clamped to [%.3f, %.3f]", m->data, tilt_.lower(),
+                            tilt_.upper());
+      });
   cmd_sub_ = nh_.subscribe<geometry_msgs::Twist>("cmd_vel", 10, [this](const geometry_msgs::TwistConstPtr& m) {
     base_.command(m->linear.x, m->angular.z);
   });

@@ -22,13 +22,13 @@ namespace
 /// The node's private parameters (same names); the defaults here are the node's.
 struct StillCameraParameters
 {
-  std::string file;                          ///< image file (cv::imread); required
-  std::string frame_id = "camera_optical";   ///< frame of the image and camera_info
-  double rate = 10.0;                        ///< publishing rate [Hz], (0, 1000]
-  int width = 0;                             ///< [px]; with height > 0 the image is resized, 0 = the file's
-  int height = 0;                            ///< [px]; see width
-  double horizontal_fov_deg = 43.0;          ///< horizontal field of view [deg], (1, 179)
-  double baseline = 0.0;  ///< [m], [0, 10); > 0 makes this the right camera of a rectified pair
+  std::string file;                         ///< image file (cv::imread); required
+  std::string frame_id = "camera_optical";  ///< frame of the image and camera_info
+  double rate = 10.0;                       ///< publishing rate [Hz], (0, 1000]
+  int width = 0;                            ///< [px]; with height > 0 the image is resized, 0 = the file's
+  int height = 0;                           ///< [px]; see width
+  double horizontal_fov_deg = 43.0;         ///< horizontal field of view [deg], (1, 179)
+  double baseline = 0.0;                    ///< [m], [0, 10); > 0 makes this the right camera of a rectified pair
 
   /// Throws std::invalid_argument naming the parameter (wrong type or out of range).
   static StillCameraParameters load(const ros::NodeHandle& private_nh)

@@ -52,8 +52,7 @@ public:
 
   /// Steps (b)-(e) of one level: colour-masked Hamming costs after the DoG along disparity.
   /// left/right: 8-bit BGR at the level's size. barriers: CV_8U, non-zero on left line/edge events.
-  CostVolume levelCosts(size_t level, const cv::Mat& left, const cv::Mat& right, int disparities,
-                        cv::Mat* barriers);
+  CostVolume levelCosts(size_t level, const cv::Mat& left, const cv::Mat& right, int disparities, cv::Mat* barriers);
 
 private:
   void fuseWithCoarser(CostVolume& costs, const CostVolume& coarser) const;

@@ -11,23 +11,23 @@ struct BioBinParameters
   /// Scale wavelengths lambda, ascending. Level s works on the images resized by base/lambda_s
   /// (lambda 4 = full size, 8 = half, 16 = quarter) with V1 filters of wavelength `base_wavelength`.
   std::vector<double> wavelengths{4.0, 8.0, 16.0};
-  double base_wavelength = 4.0;  ///< lambda of the V1 filters on every level [level px]
-  int max_disparity = 64;        ///< md [input px]; disparities 0..md are searched
-  double kappa = 0.2;            ///< colour-mask modulation of the matching cost, [0, 1]
-  double tau = 0.4;              ///< DoG gain
-  double alpha = 1.0;            ///< DoG excitation weight
-  double beta = 0.5;             ///< DoG inhibition weight
-  double sigma1 = 1.0;           ///< DoG excitation sigma at scale factor 1 [disparities]; divided by sf
-  double sigma2 = 8.0;           ///< DoG inhibition sigma at scale factor 1 [disparities]; divided by sf
-  double fusion_level = 0.1;     ///< L as a fraction of the level's largest filtered cost
-  double relaxation = 1.6;       ///< r of the spatial filter (over-relaxation towards the 3x3 mean)
-  double stable_cost = 25.0;     ///< Th_D: a cost below this before and after an iteration is frozen
-  double changing_fraction = 0.1;  ///< w: iterate until fewer than this fraction of costs change
-  int max_iterations = 2;        ///< cap on spatial-filter iterations per level (2 reach the
-                                 ///< accuracy of 6 on the Middlebury v2 quartet, measured)
-  bool line_edge_barriers = true;  ///< the spatial filter does not average across LE_s events
-  bool subpixel = true;          ///< parabola through the winner's neighbours (beyond the thesis)
-  bool left_right_check = true;  ///< invalidate pixels whose right-view disparity disagrees (beyond)
+  double base_wavelength = 4.0;       ///< lambda of the V1 filters on every level [level px]
+  int max_disparity = 64;             ///< md [input px]; disparities 0..md are searched
+  double kappa = 0.2;                 ///< colour-mask modulation of the matching cost, [0, 1]
+  double tau = 0.4;                   ///< DoG gain
+  double alpha = 1.0;                 ///< DoG excitation weight
+  double beta = 0.5;                  ///< DoG inhibition weight
+  double sigma1 = 1.0;                ///< DoG excitation sigma at scale factor 1 [disparities]; divided by sf
+  double sigma2 = 8.0;                ///< DoG inhibition sigma at scale factor 1 [disparities]; divided by sf
+  double fusion_level = 0.1;          ///< L as a fraction of the level's largest filtered cost
+  double relaxation = 1.6;            ///< r of the spatial filter (over-relaxation towards the 3x3 mean)
+  double stable_cost = 25.0;          ///< Th_D: a cost below this before and after an iteration is frozen
+  double changing_fraction = 0.1;     ///< w: iterate until fewer than this fraction of costs change
+  int max_iterations = 2;             ///< cap on spatial-filter iterations per level (2 reach the
+                                      ///< accuracy of 6 on the Middlebury v2 quartet, measured)
+  bool line_edge_barriers = true;     ///< the spatial filter does not average across LE_s events
+  bool subpixel = true;               ///< parabola through the winner's neighbours (beyond the thesis)
+  bool left_right_check = true;       ///< invalidate pixels whose right-view disparity disagrees (beyond)
   double left_right_tolerance = 1.0;  ///< [input px]
 
   /// Throws std::invalid_argument naming the offending field.

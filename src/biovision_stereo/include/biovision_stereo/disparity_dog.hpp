@@ -25,7 +25,7 @@ private:
   {
     bool enabled = false;
     float b = 0.f, a1 = 0.f, a2 = 0.f, a3 = 0.f;  // w[n] = b x[n] + a1 w[n-1] + a2 w[n-2] + a3 w[n-3]
-    int pad = 0;  // replicated values added at both ends of the curve
+    int pad = 0;                                  // replicated values added at both ends of the curve
   };
 
   static std::vector<float> taps(double sigma);

@@ -12,8 +12,7 @@ class Hamming
 {
 public:
   /// Row of costs: out[x] = distance(a[x], b[x - shift]) for x >= shift, `missing` for x < shift.
-  static void row(const PixelDescriptor* a, const PixelDescriptor* b, int width, int shift, float missing,
-                  float* out);
+  static void row(const PixelDescriptor* a, const PixelDescriptor* b, int width, int shift, float missing, float* out);
   static int distance(const PixelDescriptor& a, const PixelDescriptor& b);
   /// Portable bit-counting reference (no POPCNT): for tests.
   static int distanceScalar(const PixelDescriptor& a, const PixelDescriptor& b);

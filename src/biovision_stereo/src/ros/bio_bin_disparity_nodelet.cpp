@@ -39,15 +39,15 @@ void checkInfo(const sensor_msgs::CameraInfo& info, const sensor_msgs::Image& im
 {
   const double fx = info.P[0];
   if (!std::isfinite(fx) || fx <= 0.0)
-    throw std::invalid_argument(std::string(which) + " camera_info has no valid focal length (P[0] = " +
-                                std::to_string(fx) + ")");
+    throw std::invalid_argument(std::string(which) +
+                                " camera_info has no valid focal length (P[0] = " + std::to_string(fx) + ")");
   for (double v : info.P)
     if (!std::isfinite(v))
       throw std::invalid_argument(std::string(which) + " camera_info projection matrix has NaN/Inf");
   if (info.width != 0 && (info.width != image.width || info.height != image.height))
     throw std::invalid_argument(std::string(which) + " camera_info is " + std::to_string(info.width) + "x" +
-                                std::to_string(info.height) + " but the image is " + std::to_string(image.width) +
-                                "x" + std::to_string(image.height));
+                                std::to_string(info.height) + " but the image is " + std::to_string(image.width) + "x" +
+                                std::to_string(image.height));
 }
 }  // namespace
 
@@ -70,8 +70,8 @@ void BioBinDisparityNodelet::onInitNodelet()
   }
   else
   {
-    exact_sync_ = std::make_unique<message_filters::Synchronizer<ExactPolicy>>(ExactPolicy(queue_size_), left_sub_,
-                                                                              left_info_sub_, right_sub_, right_info_sub_);
+    exact_sync_ = std::make_unique<message_filters::Synchronizer<ExactPolicy>>(
+        ExactPolicy(queue_size_), left_sub_, left_info_sub_, right_sub_, right_info_sub_);
     exact_sync_->registerCallback(&BioBinDisparityNodelet::pairCallback, this);
   }
 
@@ -127,7 +127,8 @@ void BioBinDisparityNodelet::reconfigure(BioBinDisparityConfig& config, uint32_t
   }
   catch (const std::invalid_argument& e)
   {
-    diagnostics_.health().reportError(getName(), std::string("rejected parameters (keeping the previous ones): ") + e.what());
+    diagnostics_.health().reportError(getName(),
+                                      std::string("rejected parameters (keeping the previous ones): ") + e.what());
     std::lock_guard<std::mutex> lock(matcher_mutex_);
     if (!matcher_)
       matcher_ = std::make_unique<BioBinMatcher>(BioBinParameters());
@@ -153,11 +154,13 @@ void BioBinDisparityNodelet::pairCallback(const sensor_msgs::ImageConstPtr& left
                                   std::to_string(right->height) + " " + right->encoding + " differ");
     // image_geometry also asserts (aborts the whole process) unless the two projections share fx, fy and cy,
     // as a rectified pair does: refuse any other pair here.
-    if (left_info->P[0] != right_info->P[0] || left_info->P[5] != right_info->P[5] || left_info->P[6] != right_info->P[6])
-      throw std::invalid_argument("left and right camera_info are not a rectified pair: fx " + std::to_string(left_info->P[0]) +
-                                  "/" + std::to_string(right_info->P[0]) + ", fy " + std::to_string(left_info->P[5]) + "/" +
-                                  std::to_string(right_info->P[5]) + ", cy " + std::to_string(left_info->P[6]) + "/" +
-                                  std::to_string(right_info->P[6]) + " (left/right P) must be equal");
+    if (left_info->P[0] != right_info->P[0] || left_info->P[5] != right_info->P[5] ||
+        left_info->P[6] != right_info->P[6])
+      throw std::invalid_argument("left and right camera_info are not a rectified pair: fx " +
+                                  std::to_string(left_info->P[0]) + "/" + std::to_string(right_info->P[0]) + ", fy " +
+                                  std::to_string(left_info->P[5]) + "/" + std::to_string(right_info->P[5]) + ", cy " +
+                                  std::to_string(left_info->P[6]) + "/" + std::to_string(right_info->P[6]) +
+                                  " (left/right P) must be equal");
     // image_geometry asserts (aborts) when the two frame ids differ; drivers disagree on that
     // convention, and only fx and the baseline are used here, so give the right info the left frame.
     if (right_info->header.frame_id != left_info->header.frame_id)
@@ -216,9 +219,10 @@ void BioBinDisparityNodelet::watchSynchronisation()
   if (pairs != watched_pairs_)
     last_pair_time_ = ros::WallTime::now();
   else if (left > watched_left_ + 2 && (ros::WallTime::now() - last_pair_time_).toSec() > 3.0)
-    diagnostics_.health().reportError(getName(), "left images arrive but no left/right/camera_info set is synchronised for 3 s (" +
-                                                     std::string(approximate_sync_ ? "approximate" : "exact") +
-                                                     " sync; check stamps or set ~approximate_sync)");
+    diagnostics_.health().reportError(getName(),
+                                      "left images arrive but no left/right/camera_info set is synchronised for 3 s (" +
+                                          std::string(approximate_sync_ ? "approximate" : "exact") +
+                                          " sync; check stamps or set ~approximate_sync)");
   watched_left_ = left;
   watched_pairs_ = pairs;
 }

@@ -30,13 +30,13 @@ class KeypointDetector
 public:
   struct Parameters
   {
-    double threshold = 0.2;         ///< K >= threshold * scale contrast. [0, 4]
-    double min_contrast = 0.01;     ///< scales whose largest complex response is below this give none
-    double inhibition_gain = 1.0;   ///< g. [0, 4]
-    double radial_factor = 2.0;     ///< r. [0, 8]
-    double junction_weight = 0.5;   ///< w of the junction cells. [0, 4]
-    double junction_balance = 0.35; ///< b: junction cells see [min(C_i, X_i) - b max(C_i, X_i)]^+. [0, 1)
-    int max_keypoints = 2000;       ///< per image, strongest first. >= 1
+    double threshold = 0.2;          ///< K >= threshold * scale contrast. [0, 4]
+    double min_contrast = 0.01;      ///< scales whose largest complex response is below this give none
+    double inhibition_gain = 1.0;    ///< g. [0, 4]
+    double radial_factor = 2.0;      ///< r. [0, 8]
+    double junction_weight = 0.5;    ///< w of the junction cells. [0, 4]
+    double junction_balance = 0.35;  ///< b: junction cells see [min(C_i, X_i) - b max(C_i, X_i)]^+. [0, 1)
+    int max_keypoints = 2000;        ///< per image, strongest first. >= 1
   };
 
   KeypointDetector() = default;

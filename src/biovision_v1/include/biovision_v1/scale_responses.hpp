@@ -10,8 +10,8 @@ namespace biovision_v1
 /// (decimation * k, decimation * j), and the values there equal the full-resolution convolution.
 struct ScaleResponses
 {
-  double wavelength = 0.0;  ///< lambda [image px]
-  int decimation = 1;       ///< grid step [image px]
+  double wavelength = 0.0;    ///< lambda [image px]
+  int decimation = 1;         ///< grid step [image px]
   std::vector<cv::Mat> even;  ///< R^E_{s,i}, CV_32F, one per orientation
   std::vector<cv::Mat> odd;   ///< R^O_{s,i}, CV_32F, one per orientation
 

@@ -44,17 +44,17 @@ public:
 private:
   struct SpectrumRun
   {
-    int row, col;             // first entry in the full-resolution spectrum
-    int grid_row, grid_col;   // where it folds to on the grid
-    std::vector<cv::Vec2f> h; // kernel spectrum values along the row
+    int row, col;              // first entry in the full-resolution spectrum
+    int grid_row, grid_col;    // where it folds to on the grid
+    std::vector<cv::Vec2f> h;  // kernel spectrum values along the row
   };
 
   struct ScalePlan
   {
     double wavelength = 0.0;
     int decimation = 1;
-    int padding = 0;        // image padding [px], a multiple of decimation
-    cv::Size padded;        // DFT size at full resolution, a multiple of decimation
+    int padding = 0;          // image padding [px], a multiple of decimation
+    cv::Size padded;          // DFT size at full resolution, a multiple of decimation
     int spectrum_source = 0;  // index of the scale whose image spectrum this scale reads
     // Per orientation: the kernel spectrum (DFT of the flipped complex kernel, / d^2) where it is not
     // negligible, as runs along spectrum rows, each already mapped onto the folded grid.

@@ -66,7 +66,8 @@ void V1CellsNodelet::reconfigure(V1CellsConfig& config, uint32_t /*level*/)
   catch (const std::invalid_argument& e)
   {
     // Keep the previous, valid pipeline; a rejected value never gets used.
-    diagnostics_.health().reportError(getName(), std::string("rejected parameters (keeping the previous ones): ") + e.what());
+    diagnostics_.health().reportError(getName(),
+                                      std::string("rejected parameters (keeping the previous ones): ") + e.what());
     std::lock_guard<std::mutex> lock(pipeline_mutex_);
     if (!pipeline_)
       pipeline_ = std::make_unique<V1Pipeline>(V1Pipeline::Parameters());
@@ -83,13 +84,15 @@ void V1CellsNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
     std::lock_guard<std::mutex> lock(pipeline_mutex_);
     try
     {
-      input = biovision_ros_common::ImageMessageConverter::toCv(*msg, biovision_ros_common::ImageMessageConverter::Depth::Keep);
+      input = biovision_ros_common::ImageMessageConverter::toCv(
+          *msg, biovision_ros_common::ImageMessageConverter::Depth::Keep);
       result = pipeline_->process(input, want_debug);
     }
     catch (const std::exception& e)  // ImageConversionError, invalid_argument, cv::Exception
     {
-      diagnostics_.health().reportError(getName(), "dropping image " + std::to_string(msg->width) + "x" + std::to_string(msg->height) +
-                                         " '" + msg->encoding + "' from " + input_topic_ + ": " + e.what());
+      diagnostics_.health().reportError(getName(), "dropping image " + std::to_string(msg->width) + "x" +
+                                                       std::to_string(msg->height) + " '" + msg->encoding + "' from " +
+                                                       input_topic_ + ": " + e.what());
       return;
     }
     last_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -142,8 +145,8 @@ sensor_msgs::ImagePtr V1CellsNodelet::debugImage(const cv::Mat& input, const V1R
       }
   }
   for (const Keypoint& k : result.keypoints)
-    cv::circle(canvas, cv::Point(cvRound(k.x), cvRound(k.y)), std::max(2, cvRound(k.wavelength / 2)), cv::Scalar(0, 255, 255), 1,
-               cv::LINE_AA);
+    cv::circle(canvas, cv::Point(cvRound(k.x), cvRound(k.y)), std::max(2, cvRound(k.wavelength / 2)),
+               cv::Scalar(0, 255, 255), 1, cv::LINE_AA);
   return cv_bridge::CvImage(header, enc::BGR8, canvas).toImageMsg();
 }
 

@@ -81,9 +81,9 @@ private:
 
   std::mutex mutex_;  // guards everything below
   std::unique_ptr<HeadAttractor> attractor_;
-  std::vector<SeenRegion> regions_;  // the latest frame's, used by one step
+  std::vector<SeenRegion> regions_;                            // the latest frame's, used by one step
   biovision_msgs::SalientRegionArrayConstPtr latest_regions_;  // for set_mode's "region:<rank>"
-  double pan_ = 0.0, tilt_ = 0.0, half_fov_ = 0.0;  // [rad]
+  double pan_ = 0.0, tilt_ = 0.0, half_fov_ = 0.0;             // [rad]
   ros::Time joints_received_;  // ROS time the pan joint state last arrived; zero = none since start or a time jump
   ros::Time last_step_;        // ROS time of the last control tick; zero = none
   HeadAttractor::Output last_output_;

@@ -77,9 +77,9 @@ private:
   tf2_ros::StaticTransformBroadcaster static_tf_;
   ros::Subscriber pan_sub_, tilt_sub_, cmd_sub_;
 
-  ros::Time epoch_;            // sim time of step 0 (ROS time 0 means "unset")
-  ros::WallTime wall_start_;   // wall time of step 0, for pacing
-  double t_ = 0.0;             // sim time since epoch_ [s]
-  long step_ = 0;              // physics steps since epoch_
+  ros::Time epoch_;           // sim time of step 0 (ROS time 0 means "unset")
+  ros::WallTime wall_start_;  // wall time of step 0, for pacing
+  double t_ = 0.0;            // sim time since epoch_ [s]
+  long step_ = 0;             // physics steps since epoch_
 };
 }  // namespace biovision_sim

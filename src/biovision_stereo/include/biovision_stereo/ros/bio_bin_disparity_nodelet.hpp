@@ -41,8 +41,8 @@ public:
 private:
   using ExactPolicy = message_filters::sync_policies::ExactTime<sensor_msgs::Image, sensor_msgs::CameraInfo,
                                                                 sensor_msgs::Image, sensor_msgs::CameraInfo>;
-  using ApproximatePolicy = message_filters::sync_policies::ApproximateTime<sensor_msgs::Image, sensor_msgs::CameraInfo,
-                                                                            sensor_msgs::Image, sensor_msgs::CameraInfo>;
+  using ApproximatePolicy = message_filters::sync_policies::ApproximateTime<
+      sensor_msgs::Image, sensor_msgs::CameraInfo, sensor_msgs::Image, sensor_msgs::CameraInfo>;
 
   void onInitNodelet() override;
   void subscribe() override;

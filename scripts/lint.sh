@@ -12,9 +12,8 @@
 #     entry, yet passes ROS on to everything that links it through CMake. Reads this workspace's
 #     build/ and devel/ (make lint builds first); every package of src/ with such a library is
 #     checked, future ones included, except the packages that are ROS code by design (ROS_PACKAGES).
-#  3. clang-format --dry-run --Werror with the root .clang-format over the clone's C++ files. The tree
-#     is not formatted yet (it is reformatted once, after the branches in flight are merged), so this
-#     reports how many files differ and fails only when BIOVISION_FORMAT_STRICT=1 is set.
+#  3. clang-format --dry-run --Werror with the root .clang-format over the clone's C++ files: fails when
+#     any file differs (format with `clang-format -i FILE`).
 # Exits non-zero when a check fails; prints one line per check.
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -67,7 +66,7 @@ else
   echo "lint: ROS-free cores: $checked core libraries, none links ROS"
 fi
 
-# 3. clang-format (reports; fails only with BIOVISION_FORMAT_STRICT=1)
+# 3. clang-format
 mapfile -t sources < <(git -C "$tmp/ws" ls-files '*.cpp' '*.hpp' '*.h' '*.cc')
 differ=0
 for f in "${sources[@]}"; do
@@ -75,10 +74,8 @@ for f in "${sources[@]}"; do
 done
 if ((differ == 0)); then
   echo "lint: clang-format: all ${#sources[@]} C++ files formatted"
-elif [[ "${BIOVISION_FORMAT_STRICT:-0}" == 1 ]]; then
-  echo "lint: clang-format FAILED: $differ of ${#sources[@]} C++ files differ from .clang-format"
-  status=1
 else
-  echo "lint: clang-format: $differ of ${#sources[@]} C++ files differ from .clang-format (report only; BIOVISION_FORMAT_STRICT=1 fails)"
+  echo "lint: clang-format FAILED: $differ of ${#sources[@]} C++ files differ from .clang-format (clang-format -i FILE)"
+  status=1
 fi
 exit $status

@@ -30,6 +30,8 @@ PACKAGES=(
   opencv-doc
   # libraries the ROS-free cores use
   libopencv-dev libopencv-contrib-dev libeigen3-dev liblinear-dev libyaml-cpp-dev
+  # biovision_common: tool options, JSON, CRC
+  libcli11-dev nlohmann-json3-dev zlib1g-dev
   # tests and benchmarks
   googletest libgtest-dev libbenchmark-dev valgrind
 )

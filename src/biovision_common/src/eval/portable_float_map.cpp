@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "biovision_common/atomic_file.hpp"
+
 namespace biovision_common
 {
 namespace
@@ -72,24 +74,18 @@ void PortableFloatMap::write(const std::string& path, const cv::Mat& image, floa
     throw std::runtime_error("PFM " + path + ": can only write non-empty CV_32FC1 or CV_32FC3");
   if (scale == 0)
     throw std::runtime_error("PFM " + path + ": scale must not be 0");
-  const std::string tmp = path + ".tmp";
+  std::ostringstream out;
+  out << (image.channels() == 3 ? "PF" : "Pf") << "\n" << image.cols << " " << image.rows << "\n" << scale << "\n";
+  const bool file_little = scale < 0;
+  std::vector<float> row(size_t(image.cols) * image.channels());
+  for (int r = image.rows - 1; r >= 0; --r)
   {
-    std::ofstream out(tmp, std::ios::binary);
-    out << (image.channels() == 3 ? "PF" : "Pf") << "\n" << image.cols << " " << image.rows << "\n" << scale << "\n";
-    const bool file_little = scale < 0;
-    std::vector<float> row(size_t(image.cols) * image.channels());
-    for (int r = image.rows - 1; r >= 0; --r)
-    {
-      std::memcpy(row.data(), image.ptr<float>(r), row.size() * sizeof(float));
-      if (file_little != hostIsLittleEndian())
-        for (float& v : row)
-          swapBytes(v);
-      out.write(reinterpret_cast<const char*>(row.data()), static_cast<std::streamsize>(row.size() * sizeof(float)));
-    }
-    if (!out)
-      throw std::runtime_error("PFM " + path + ": write failed");
+    std::memcpy(row.data(), image.ptr<float>(r), row.size() * sizeof(float));
+    if (file_little != hostIsLittleEndian())
+      for (float& v : row)
+        swapBytes(v);
+    out.write(reinterpret_cast<const char*>(row.data()), static_cast<std::streamsize>(row.size() * sizeof(float)));
   }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0)
-    throw std::runtime_error("PFM " + path + ": rename failed");
+  writeFileAtomically(path, out.str());  // throws FileError (a std::runtime_error) naming the file
 }
 }  // namespace biovision_common

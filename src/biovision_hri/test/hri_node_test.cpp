@@ -130,6 +130,7 @@ TEST_F(HriNode, BadInputGivesAnErrorAndNoOutputAndTheNodeKeepsWorking)
   ASSERT_TRUE(waitFor([&] { return image_pub_.getNumSubscribers() > 0; }, 20.0));
   ASSERT_TRUE(showUntil(message(faceScene(cv::Rect(150, 60, 84, 84))), faces, 30.0));
 
+  ros::WallDuration(1.5).sleep();  // images still queued from showUntil() are answered first
   const size_t before = faces.count();
   cv::Mat wrong(240, 320, CV_32SC1, cv::Scalar(7));
   for (int i = 0; i < 5; ++i)

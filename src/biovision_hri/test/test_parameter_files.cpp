@@ -24,6 +24,7 @@ TEST(ParameterFiles, CfgDefaultsEqualTheCoreDefaults)
     EXPECT_EQ(c.threshold, d.threshold);
     EXPECT_EQ(c.min_size, d.min_size);
     EXPECT_EQ(c.max_size, d.max_size);
+    EXPECT_EQ(c.max_detections, d.max_detections);
   }
   EXPECT_EQ(cfg.gestures.max_distance, core.gestures.max_distance);
   EXPECT_EQ(cfg.gestures.min_matches, core.gestures.min_matches);

@@ -22,6 +22,7 @@ int main(int argc, char** argv)
   std::string data = hriDataRoot("../shared"), set = "linto", json_path;
   std::string descriptor_model = ros::package::getPath("biovision_recognition") + "/models/v1_ldahash_128.bin";
   int rejection = 20, free_regions = 200, seed = 3;
+  bool validation = false;
   GestureRecognizer::Parameters p;
   biovision_common::ToolOptions options("gesture_eval",
                                         "Evaluates gesture recognition by V1 keypoint templates on held-out frames "
@@ -38,6 +39,10 @@ int main(int argc, char** argv)
   app.add_option("--max-distance", p.max_distance, "Hamming radius [bits] (thesis: < 30)");
   app.add_option("--min-matches", p.min_matches, "verified matches for a gesture (thesis: >= 4)");
   app.add_option("--seed", seed, "seed of the random patches");
+  app.add_option("--validation", validation,
+                 "for parameter choices: split the template part itself (first half of its people / frames "
+                 "gives templates, the rest is tested) and take gesture-free regions from validation scenes; "
+                 "the held-out part is not read");
   app.add_option("--json", json_path, "write the results");
   options.parse(argc, argv);
   try
@@ -45,7 +50,25 @@ int main(int argc, char** argv)
     const auto start = std::chrono::steady_clock::now();
     auto descriptor = std::make_shared<const biovision_recognition::V1Descriptor>(
         biovision_recognition::DescriptorModel::load(descriptor_model));
-    const auto samples = set == "linto" ? lintoSamples(data) : trieschSamples(data);
+    auto samples = set == "linto" ? lintoSamples(data) : trieschSamples(data);
+    if (validation)
+    {
+      // Keep the template part only and split it again: Triesch by person, LinTO by frame order per gesture.
+      std::vector<GestureSample> part;
+      std::copy_if(samples.begin(), samples.end(), std::back_inserter(part),
+                   [](const GestureSample& g) { return g.template_part; });
+      std::vector<std::string> groups;
+      for (const auto& g : part)
+        groups.push_back(g.group);
+      std::sort(groups.begin(), groups.end());
+      groups.erase(std::unique(groups.begin(), groups.end()), groups.end());
+      std::map<std::string, int> seen;
+      for (auto& g : part)
+        g.template_part = set == "triesch" ? std::lower_bound(groups.begin(), groups.end(), g.group) - groups.begin() <
+                                                 static_cast<long>(groups.size() / 2)
+                                           : seen[g.label]++ == 0;
+      samples = part;
+    }
     auto load = [&](const GestureSample& g, cv::Rect& box) {
       cv::Mat image = readGray(g.file);
       box = g.box;
@@ -59,14 +82,14 @@ int main(int argc, char** argv)
     std::vector<cv::Mat> train_scenes, test_scenes;
     for (const auto& f : splitPart(sceneFiles(data), Split::Train))
       train_scenes.push_back(readGray(f));
-    for (const auto& f : splitPart(sceneFiles(data), Split::Test))
+    for (const auto& f : splitPart(sceneFiles(data), validation ? Split::Validation : Split::Test))
       test_scenes.push_back(readGray(f));
     cv::RNG rng(static_cast<uint64_t>(seed));
     const auto rejection_patches = randomScenePatches(train_scenes, rejection, rng, 100, 250);
     const int free_side = set == "linto" ? 100 : 60;
     const auto free_patches = randomScenePatches(test_scenes, free_regions, rng, free_side, free_side * 5 / 2);
 
-    nlohmann::ordered_json runs = nlohmann::ordered_json::array();
+    nlohmann::ordered_json runs = nlohmann::ordered_json::object(), confusions = nlohmann::ordered_json::object();
     for (const bool with_rejection : {false, true})
     {
       GestureRecognizer recognizer(descriptor, p);
@@ -108,17 +131,17 @@ int main(int argc, char** argv)
       std::sort(ms.begin(), ms.end());
       const double accuracy = tested ? static_cast<double>(correct) / tested : 0.0;
       const double false_rate = free_patches.empty() ? 0.0 : static_cast<double>(false_gestures) / free_patches.size();
-      runs.push_back({{"rejection_class", with_rejection},
-                      {"labels", labels},
-                      {"templates", templates},
-                      {"rejection_templates", with_rejection ? rejection : 0},
-                      {"tested", tested},
-                      {"accuracy", accuracy},
-                      {"no_gesture_on_gesture_frames", tested ? static_cast<double>(unrecognised) / tested : 0.0},
-                      {"gesture_free_regions", free_patches.size()},
-                      {"false_gesture_rate", false_rate},
-                      {"median_ms_per_region", ms.empty() ? 0.0 : ms[ms.size() / 2]},
-                      {"confusion", confusion}});
+      const std::string run = with_rejection ? "with_rejection_class" : "without_rejection_class";
+      confusions[run] = confusion;
+      runs[run] = {{"labels", labels.size()},
+                   {"templates", templates},
+                   {"rejection_templates", with_rejection ? rejection : 0},
+                   {"tested", tested},
+                   {"accuracy", accuracy},
+                   {"no_gesture_on_gesture_frames", tested ? static_cast<double>(unrecognised) / tested : 0.0},
+                   {"gesture_free_regions", free_patches.size()},
+                   {"false_gesture_rate", false_rate},
+                   {"median_ms_per_region", ms.empty() ? 0.0 : ms[ms.size() / 2]}};
       std::cerr << "gesture_eval: " << set << (with_rejection ? " with" : " without") << " rejection class: accuracy "
                 << accuracy << " (" << correct << "/" << tested << "), false gestures on " << free_patches.size()
                 << " gesture-free regions " << false_rate << ", "
@@ -130,12 +153,18 @@ int main(int argc, char** argv)
       doc["tool"] = "gesture_eval";
       doc["command"] = options.command();
       doc["set"] = set;
+      doc["reported_on"] = validation ? "validation (the template part split again)" : "test";
       doc["split"] = set == "linto" ? "templates: LinTO session 11eb (earlier); tested: session 11ec (later)"
                                     : "templates: first half of the people by name; tested: the other half";
       doc["hand_regions"] = "annotated boxes (LinTO) / whole crops padded by 20 px (Triesch)";
       doc["max_distance"] = p.max_distance;
       doc["min_matches"] = p.min_matches;
       doc["runs"] = runs;
+      doc["confusion"] = confusions;
+      doc["notes"] = std::string("Held out: ") + doc["split"].get<std::string>() +
+                     ". Gesture-free regions: random patches of the test part of the negative scenes. Data: " +
+                     (set == "linto" ? "LinTO multi-hand-gesture dataset."
+                                     : "Triesch & von der Malsburg hand postures.");
       biovision_common::writeJsonFile(json_path, doc);
     }
   }

@@ -37,7 +37,8 @@ int main(int argc, char** argv)
   app.add_option("--free-regions", free_regions, "gesture-free test regions from held-out scenes")
       ->check(biovision_common::kNonNegative);
   app.add_option("--max-distance", p.max_distance, "Hamming radius [bits] (thesis: < 30)");
-  app.add_option("--min-matches", p.min_matches, "verified matches for a gesture (thesis: >= 4)");
+  app.add_option("--min-matches", p.min_matches,
+                 "verified matches for a gesture (thesis: >= 4; default chosen on validation)");
   app.add_option("--seed", seed, "seed of the random patches");
   app.add_option("--validation", validation,
                  "for parameter choices: split the template part itself (first half of its people / frames "

@@ -58,4 +58,11 @@ const std::vector<std::pair<std::string, double TaskParameters::*>>& TaskParamet
   };
   return fields;
 }
+const std::vector<std::pair<std::string, int TaskParameters::*>>& TaskParameters::namedInts()
+{
+  static const std::vector<std::pair<std::string, int TaskParameters::*>> fields = {
+      {"occupied_threshold", &TaskParameters::occupied_threshold},
+  };
+  return fields;
+}
 }  // namespace biovision_tasks

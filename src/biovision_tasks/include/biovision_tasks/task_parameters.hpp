@@ -34,5 +34,6 @@ struct TaskParameters
   void validate() const;
   /// The fields by their parameter name (config/task_manager.yaml, cfg/TaskManager.cfg).
   static const std::vector<std::pair<std::string, double TaskParameters::*>>& namedDoubles();
+  static const std::vector<std::pair<std::string, int TaskParameters::*>>& namedInts();
 };
 }  // namespace biovision_tasks

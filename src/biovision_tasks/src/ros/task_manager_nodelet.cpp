@@ -4,6 +4,7 @@
 
 #include <biovision_msgs/SetHeadMode.h>
 #include <geometry_msgs/PoseStamped.h>
+#include <std_msgs/Float64.h>
 #include <pluginlib/class_list_macros.hpp>
 #include <tf2/LinearMath/Quaternion.h>
 #include <tf2/LinearMath/Transform.h>
@@ -62,13 +63,15 @@ void TaskManagerNodelet::onInit()
   base_frame_ = pnh.param<std::string>("base_frame", "base_link");
   pose_timeout_ = pnh.param("pose_timeout", 1.0);
   seen_hold_ = pnh.param("seen_hold", 1.0);
+  goal_refresh_ = pnh.param("goal_refresh", 10.0);
   const double rate = pnh.param("rate", 5.0);
-  if (!(rate > 0) || !(pose_timeout_ > 0) || !(seen_hold_ >= 0))
-    throw std::invalid_argument("task_manager: ~rate and ~pose_timeout must be > 0, ~seen_hold >= 0");
+  if (!(rate > 0) || !(pose_timeout_ > 0) || !(seen_hold_ >= 0) || !(goal_refresh_ > 0))
+    throw std::invalid_argument("task_manager: ~rate, ~pose_timeout and ~goal_refresh must be > 0, ~seen_hold >= 0");
   manager_ = std::make_unique<TaskManager>(parameters_);
   tf_listener_ = std::make_unique<tf2_ros::TransformListener>(tf_buffer_);
 
-  goal_pub_ = nh.advertise<geometry_msgs::PoseStamped>("base/goal", 1);
+  goal_pub_ = nh.advertise<geometry_msgs::PoseStamped>("goal", 1);
+  bearing_pub_ = nh.advertise<std_msgs::Float64>("goal_bearing", 1);
   status_pub_ = nh.advertise<biovision_msgs::TaskStatus>("tasks/status", 5);
   objects_sub_ = nh.subscribe("objects", 5, &TaskManagerNodelet::onObjects, this);
   ltm_sub_ = nh.subscribe("memory/ltm", 1, &TaskManagerNodelet::onLtm, this);
@@ -316,28 +319,36 @@ void TaskManagerNodelet::command(const MotorCommand& c, const Percept& p, const 
       if (!stopped_)
         NODELET_WARN_THROTTLE(5.0, "task_manager: base/stop unavailable");
     }
+    sent_ = c;
     return;
   }
-  stopped_ = false;
-  geometry_msgs::PoseStamped goal;
-  goal.header.stamp = now;
-  goal.header.frame_id = map_frame_;
-  double yaw;
+  const bool same_kind = !stopped_ && sent_.base == c.base;
+  const bool stale = (now - sent_time_).toSec() >= goal_refresh_;
   if (c.base == MotorCommand::Base::Goal)
   {
+    if (same_kind && !stale && std::hypot(c.goal_x - sent_.goal_x, c.goal_y - sent_.goal_y) <= 0.05)
+      return;
+    geometry_msgs::PoseStamped goal;
+    goal.header.stamp = now;
+    goal.header.frame_id = map_frame_;
     goal.pose.position.x = c.goal_x;
     goal.pose.position.y = c.goal_y;
-    yaw = std::atan2(c.goal_y - p.pose.y, c.goal_x - p.pose.x);
+    const double yaw = std::atan2(c.goal_y - p.pose.y, c.goal_x - p.pose.x);
+    goal.pose.orientation.z = std::sin(yaw / 2);
+    goal.pose.orientation.w = std::cos(yaw / 2);
+    goal_pub_.publish(goal);
   }
-  else  // Heading: a goal at the robot itself, turned to the heading
+  else  // Heading: a bearing relative to the robot's heading now
   {
-    goal.pose.position.x = p.pose.x;
-    goal.pose.position.y = p.pose.y;
-    yaw = c.heading;
+    if (same_kind && !stale && std::abs(std::remainder(c.heading - sent_.heading, 2 * M_PI)) <= 0.05)
+      return;
+    std_msgs::Float64 bearing;
+    bearing.data = std::remainder(c.heading - p.pose.yaw, 2 * M_PI);
+    bearing_pub_.publish(bearing);
   }
-  goal.pose.orientation.z = std::sin(yaw / 2);
-  goal.pose.orientation.w = std::cos(yaw / 2);
-  goal_pub_.publish(goal);
+  stopped_ = false;
+  sent_ = c;
+  sent_time_ = now;
 }
 
 void TaskManagerNodelet::finishGoal()

@@ -35,9 +35,10 @@ namespace biovision_tasks
 /// tf; "in view" for ~seen_hold s), `memory/ltm` (nav_msgs/OccupancyGrid), `memory/ltm_items`
 /// (biovision_msgs/LtmItemArray: remembered objects), `attractor/base` (biovision_msgs/AttractorState of the
 /// base controller: behaviour "trapped" or a stop/fault behaviour tells the tasks).
-/// Out: `base/goal` (geometry_msgs/PoseStamped in map: the active visuomotor cycle's goal; for a turn in
-/// place the goal is at the robot with the heading as orientation), the base controller's `base/stop`
-/// service when the command is to stop, the head controller's `head/set_mode` service on a mode change,
+/// Out: `goal` (geometry_msgs/PoseStamped in map: the active visuomotor cycle's goal, sent when it moves
+/// by more than 5 cm or every ~goal_refresh s — each goal restarts the base's trap detector, so not every
+/// cycle), `goal_bearing` (std_msgs/Float64 [rad] relative to the heading: a turn), the base controller's
+/// `base/stop` service when the command is to stop, the head controller's `head/set_mode` service on a mode change,
 /// `tasks/status` (biovision_msgs/TaskStatus, every cycle), `/diagnostics`.
 /// Action `tasks/execute` (biovision_msgs/ExecuteTask): task = a task type and arguments its object and
 /// key=value pairs (TaskSpec::parseText), or task "mission" with arguments[0] a mission YAML file; the
@@ -72,7 +73,7 @@ private:
   TaskParameters parameters_;
   std::unique_ptr<TaskManager> manager_;
   std::string map_frame_, base_frame_;
-  double pose_timeout_ = 1.0, seen_hold_ = 1.0;
+  double pose_timeout_ = 1.0, seen_hold_ = 1.0, goal_refresh_ = 10.0;
 
   tf2_ros::Buffer tf_buffer_;
   std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
@@ -83,8 +84,10 @@ private:
   ros::Time base_state_time_;
   std::string head_mode_;  ///< the last mode set on the head controller
   bool stopped_ = false;   ///< base/stop already called for the current stop
+  MotorCommand sent_;      ///< the last base command sent (goals are re-sent only when they change)
+  ros::Time sent_time_;
 
-  ros::Publisher goal_pub_, status_pub_;
+  ros::Publisher goal_pub_, bearing_pub_, status_pub_;
   ros::Subscriber objects_sub_, ltm_sub_, items_sub_, base_sub_;
   ros::ServiceClient head_mode_client_, base_stop_client_;
   ros::ServiceServer cancel_srv_;

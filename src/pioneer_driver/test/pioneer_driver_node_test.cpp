@@ -1,0 +1,141 @@
+// rostest: the pioneer_driver node (real roscore) against the ARCOS emulator hosted here on a pty.
+#include <gtest/gtest.h>
+
+#include <biovision_msgs/PioneerState.h>
+#include <geometry_msgs/Twist.h>
+#include <nav_msgs/Odometry.h>
+#include <ros/ros.h>
+#include <tf2_ros/transform_listener.h>
+
+#include "biovision_ros_common/rostest_helpers.hpp"
+#include "pioneer_driver/arcos_emulator.hpp"
+
+using biovision_ros_common::DiagnosticsWatch;
+using biovision_ros_common::TopicProbe;
+using biovision_ros_common::waitFor;
+
+namespace
+{
+std::unique_ptr<pioneer_driver::ArcosEmulator> g_robot;
+
+class PioneerDriverNode : public ::testing::Test
+{
+protected:
+  PioneerDriverNode()
+  {
+    cmd_pub_ = nh_.advertise<geometry_msgs::Twist>("cmd_vel", 10);
+    spinner_.start();
+  }
+  /// Publishes cmd_vel at 20 Hz for `seconds`.
+  void drive(double v, double w, double seconds)
+  {
+    geometry_msgs::Twist t;
+    t.linear.x = v;
+    t.angular.z = w;
+    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(seconds);
+    while (ros::WallTime::now() < end)
+    {
+      cmd_pub_.publish(t);
+      ros::WallDuration(0.05).sleep();
+    }
+  }
+  ros::NodeHandle nh_;
+  ros::AsyncSpinner spinner_{2};
+  ros::Publisher cmd_pub_;
+};
+}  // namespace
+
+TEST_F(PioneerDriverNode, ConnectsAndPublishesOdometryTfAndState)
+{
+  TopicProbe<nav_msgs::Odometry> odom(nh_, "odom");
+  TopicProbe<biovision_msgs::PioneerState> state(nh_, "pioneer_state");
+  ASSERT_TRUE(odom.waitForCount(10, 15.0)) << "no odom from the emulator's SIPs";
+  ASSERT_TRUE(state.waitForCount(1, 2.0));
+  EXPECT_TRUE(state.last()->connected);
+  EXPECT_TRUE(state.last()->motors_enabled);
+  EXPECT_NEAR(state.last()->battery_voltage, 12.5, 1e-3);
+  EXPECT_EQ(odom.last()->header.frame_id, "odom");
+  EXPECT_EQ(odom.last()->child_frame_id, "base_link");
+  tf2_ros::Buffer buffer;
+  tf2_ros::TransformListener listener(buffer);
+  EXPECT_TRUE(buffer.canTransform("odom", "base_link", ros::Time(0), ros::Duration(2.0)));
+}
+
+TEST_F(PioneerDriverNode, CmdVelArrivesClampedAndOdomFollows)
+{
+  TopicProbe<nav_msgs::Odometry> odom(nh_, "odom");
+  ASSERT_TRUE(odom.waitForCount(2, 15.0));
+  const double x0 = odom.last()->pose.pose.position.x;
+  const double robot_x0 = g_robot->x();
+  drive(1.0, -3.0, 1.5);  // beyond the 0.4 m/s (test parameter) and 100°/s caps
+  EXPECT_EQ(g_robot->setpoint().vel_mm_s, 400);
+  EXPECT_EQ(g_robot->setpoint().rvel_deg_s, -99);
+  EXPECT_LE(g_robot->maxAbsVel(), 400);
+  EXPECT_LE(g_robot->maxAbsRvel(), 99);
+  ros::WallDuration(0.3).sleep();
+  const double travelled = odom.last()->pose.pose.position.x - x0;
+  EXPECT_GT(std::hypot(odom.last()->pose.pose.position.x - x0, odom.last()->pose.pose.position.y), 0.1);
+  (void)travelled;
+  (void)robot_x0;
+}
+
+TEST_F(PioneerDriverNode, TheBaseStopsHalfASecondAfterTheLastCmdVel)
+{
+  TopicProbe<nav_msgs::Odometry> odom(nh_, "odom");
+  ASSERT_TRUE(odom.waitForCount(2, 15.0));
+  drive(0.2, 0.0, 0.5);
+  ASSERT_EQ(g_robot->setpoint().vel_mm_s, 200);
+  const ros::WallTime last = ros::WallTime::now();
+  ASSERT_TRUE(waitFor([] { return g_robot->setpoint().vel_mm_s == 0; }, 3.0));
+  const double after = (ros::WallTime::now() - last).toSec();
+  EXPECT_GT(after, 0.35);
+  EXPECT_LT(after, 0.9);
+  ASSERT_TRUE(waitFor([&] { return std::abs(odom.last()->twist.twist.linear.x) < 1e-6; }, 1.0));
+}
+
+TEST_F(PioneerDriverNode, CorruptedSipsGiveADiagnosticsErrorAndOdomGoesOn)
+{
+  DiagnosticsWatch diagnostics(nh_, "Pioneer base");
+  TopicProbe<nav_msgs::Odometry> odom(nh_, "odom");
+  ASSERT_TRUE(odom.waitForCount(2, 15.0));
+  ASSERT_TRUE(waitFor([&] { return diagnostics.received() > 0; }, 3.0));
+  diagnostics.clear();
+  g_robot->corruptNextSips(3);
+  ASSERT_TRUE(waitFor([&] { return diagnostics.sawError(); }, 4.0)) << diagnostics.lastMessage();
+  EXPECT_NE(diagnostics.lastMessage().find("rejected"), std::string::npos) << diagnostics.lastMessage();
+  const size_t n = odom.count();
+  EXPECT_TRUE(odom.waitForCount(n + 5, 2.0));
+}
+
+TEST_F(PioneerDriverNode, APulledCableIsAnErrorThenTheDriverReconnects)
+{
+  DiagnosticsWatch diagnostics(nh_, "Pioneer base");
+  TopicProbe<nav_msgs::Odometry> odom(nh_, "odom");
+  TopicProbe<biovision_msgs::PioneerState> state(nh_, "pioneer_state");
+  ASSERT_TRUE(odom.waitForCount(2, 15.0));
+  g_robot->pullCable();
+  ASSERT_TRUE(waitFor([&] { return diagnostics.lastMessage().find("disconnected") != std::string::npos; }, 4.0))
+      << diagnostics.lastMessage();
+  EXPECT_TRUE(diagnostics.sawError());
+  const size_t n = odom.count();
+  ros::WallDuration(1.0).sleep();
+  EXPECT_LE(odom.count(), n + 1) << "no odometry while the cable is out";
+  g_robot->plugIn();
+  ASSERT_TRUE(odom.waitForCount(odom.count() + 5, 10.0)) << "no reconnection";
+  EXPECT_TRUE(state.last()->connected);
+  drive(0.1, 0.0, 0.5);
+  EXPECT_EQ(g_robot->setpoint().vel_mm_s, 100) << "commands flow again after the reconnection";
+}
+
+int main(int argc, char** argv)
+{
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "pioneer_driver_node_test");
+  ros::NodeHandle pnh("~");
+  std::string port;
+  pnh.param<std::string>("port", port, "/tmp/biovision_rostest_pioneer");
+  g_robot = std::make_unique<pioneer_driver::ArcosEmulator>(port);
+  const int result = RUN_ALL_TESTS();
+  g_robot.reset();
+  return result;
+}

@@ -96,6 +96,14 @@ unsigned long Ax12BusEmulator::badChecksums() const
   return parser_.rejected();
 }
 
+void Ax12BusEmulator::setRegister16(uint8_t id, uint8_t address, int value)
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  Servo& s = servos_.at(id);
+  s.table.at(address) = static_cast<uint8_t>(value & 0xFF);
+  s.table.at(address + 1) = static_cast<uint8_t>((value >> 8) & 0xFF);
+}
+
 void Ax12BusEmulator::injectError(uint8_t id, uint8_t bits)
 {
   std::lock_guard<std::mutex> lock(mutex_);

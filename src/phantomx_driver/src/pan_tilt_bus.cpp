@@ -107,12 +107,17 @@ void PanTiltBus::poll(size_t index, double now)
   }
   if (!s.alive)
   {
-    // First contact or back after a loss: our speed, torque on (unless switched off for an overload),
-    // and the goal sent again.
+    // First contact or back after a loss: the goal register may hold anything from an earlier session, and
+    // torque on drives the servo there at once. So: goal = where it is now (clamped into the limits), our
+    // speed, then torque on (unless switched off for an overload); a wanted goal follows in the next step.
+    const int here = fromLe16(reply->params, 0);
+    const int hold = std::clamp(here, std::min(j.goalTicks(j.lower), j.goalTicks(j.upper)),
+                                std::max(j.goalTicks(j.lower), j.goalTicks(j.upper)));
+    transact(writePacket(j.id, kAddrGoalPosition, le16(hold)), j.id);
     transact(writePacket(j.id, kAddrMovingSpeed, le16(speed_ticks_)), j.id);
     if (!s.torque_off)
       transact(writePacket(j.id, kAddrTorqueEnable, {1}), j.id);
-    s.goal_sent = -1;
+    s.goal_sent = hold;
     s.alive = true;
   }
   s.consecutive_misses = 0;

@@ -55,6 +55,19 @@ TEST(PanTiltBus, FindsBothServosAndReadsTheirState)
   EXPECT_EQ(servos.movingSpeed(1), movingSpeedTicks(3.0));
 }
 
+TEST(PanTiltBus, AStaleGoalRegisterDoesNotMakeTheServoJumpWhenTorqueComesOn)
+{
+  Ax12BusEmulator servos;
+  servos.setRegister16(1, kAddrGoalPosition, 900);  // left over from an earlier session, torque still off
+  PanTiltBus bus(parametersFor(servos));
+  ASSERT_TRUE(stepUntil(
+      bus, [&] { return bus.servo(0).alive && servos.torqueOn(1); }, 2.0));
+  EXPECT_EQ(servos.goal(1), 512) << "the goal is set to where the servo is before torque on";
+  stepUntil(
+      bus, [] { return false; }, 0.3);
+  EXPECT_NEAR(servos.position(1), 512.0, 0.5);
+}
+
 TEST(PanTiltBus, GoalsGoOutBySyncWriteAndPositionsFollowWithinTheLimits)
 {
   Ax12BusEmulator servos;

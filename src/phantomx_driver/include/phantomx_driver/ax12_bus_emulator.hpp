@@ -38,6 +38,8 @@ public:
   std::pair<int, int> goalRange(uint8_t id) const;
   unsigned long syncWrites() const;
   unsigned long badChecksums() const;
+  /// Writes a 16-bit register directly (e.g. a stale goal left from an earlier session).
+  void setRegister16(uint8_t id, uint8_t address, int value);
   /// Sets error bits reported in every status of `id` (e.g. kErrorOverload); 0 clears them. An overload
   /// also switches the torque off, as the AX-12's alarm shutdown does.
   void injectError(uint8_t id, uint8_t bits);

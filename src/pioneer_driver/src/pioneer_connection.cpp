@@ -35,6 +35,16 @@ PioneerConnection::~PioneerConnection()
   }
 }
 
+void PioneerConnection::setMotionLimits(const PioneerParameters& parameters)
+{
+  PioneerParameters next = p_;
+  next.max_linear_speed = parameters.max_linear_speed;
+  next.max_angular_speed = parameters.max_angular_speed;
+  next.cmd_vel_timeout = parameters.cmd_vel_timeout;
+  next.validate();
+  p_ = next;
+}
+
 void PioneerConnection::setCommand(double linear_m_s, double angular_rad_s, double now)
 {
   command_v_ = linear_m_s;

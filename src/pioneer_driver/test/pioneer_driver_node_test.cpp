@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include <biovision_msgs/PioneerState.h>
+#include <dynamic_reconfigure/Reconfigure.h>
 #include <geometry_msgs/Twist.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
@@ -140,6 +141,27 @@ TEST_F(PioneerDriverNode, CorruptedSipsGiveADiagnosticsErrorAndOdomGoesOn)
   EXPECT_NE(diagnostics.lastMessage().find("rejected"), std::string::npos) << diagnostics.lastMessage();
   const size_t n = odom.count();
   EXPECT_TRUE(odom.waitForCount(n + 5, 2.0));
+}
+
+TEST_F(PioneerDriverNode, ReconfigureLowersTheCapAndClampsARequestBeyondTheRange)
+{
+  auto call = [](double max_linear_speed) {
+    dynamic_reconfigure::Reconfigure srv;
+    dynamic_reconfigure::DoubleParameter d;
+    d.name = "max_linear_speed";
+    d.value = max_linear_speed;
+    srv.request.config.doubles.push_back(d);
+    EXPECT_TRUE(ros::service::call("pioneer_driver/set_parameters", srv));
+    for (const auto& p : srv.response.config.doubles)
+      if (p.name == "max_linear_speed")
+        return p.value;
+    return -1.0;
+  };
+  EXPECT_DOUBLE_EQ(call(0.2), 0.2);
+  drive(1.0, 0.0, 0.5);
+  EXPECT_EQ(g_robot->setpoint().vel_mm_s, 200);
+  EXPECT_DOUBLE_EQ(call(5.0), 2.2) << "the .cfg range clamps a request beyond the P3DX's 2.2 m/s";
+  EXPECT_DOUBLE_EQ(call(0.2), 0.2);
 }
 
 TEST_F(PioneerDriverNode, APulledCableIsAnErrorThenTheDriverReconnects)

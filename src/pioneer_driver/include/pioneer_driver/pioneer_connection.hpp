@@ -41,6 +41,10 @@ public:
   PioneerConnection(const PioneerConnection&) = delete;
   PioneerConnection& operator=(const PioneerConnection&) = delete;
 
+  /// New speed caps and cmd_vel time-out (dynamic_reconfigure) from `parameters`; the other fields are
+  /// ignored (they need a new session). Throws std::invalid_argument (and keeps the old values) when
+  /// `parameters` do not validate. The next step re-clamps the command in force.
+  void setMotionLimits(const PioneerParameters& parameters);
   /// The latest velocity command [m/s, rad/s] received at `now`; clamped when sent.
   void setCommand(double linear_m_s, double angular_rad_s, double now);
   /// One step: (re)connects when due, reads for up to `read_timeout` s, sends what is due. Returns the

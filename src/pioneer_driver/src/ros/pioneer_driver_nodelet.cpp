@@ -8,6 +8,8 @@
 #include <sensor_msgs/BatteryState.h>
 #include <tf2/LinearMath/Quaternion.h>
 
+#include "pioneer_driver/ros/pioneer_driver_config.hpp"
+
 namespace pioneer_driver
 {
 namespace
@@ -68,12 +70,37 @@ void PioneerDriverNodelet::onInit()
     s.add("last error", status_.last_error);
   };
   diagnostics_.init(nh, pnh, getName(), options);
+  // The speed caps and time-out are reconfigurable; the server reads their start values from ~.
+  reconfigure_server_ = std::make_unique<dynamic_reconfigure::Server<PioneerDriverConfig>>(reconfigure_mutex_, pnh);
+  reconfigure_server_->setCallback([this](PioneerDriverConfig& c, uint32_t level) { reconfigure(c, level); });
   cmd_sub_ = nh.subscribe("cmd_vel", 10, &PioneerDriverNodelet::onCommand, this);
   running_ = true;
   thread_ = std::thread([this] { run(); });
   NODELET_INFO("Pioneer driver on %s at %d bit/s (caps %.2f m/s, %.2f rad/s, cmd_vel time-out %.2f s)",
                parameters_.port.c_str(), parameters_.baud, parameters_.max_linear_speed, parameters_.max_angular_speed,
                parameters_.cmd_vel_timeout);
+}
+
+void PioneerDriverNodelet::reconfigure(PioneerDriverConfig& config, uint32_t /*level*/)
+{
+  const PioneerParameters next = withConfig(parameters_, config);
+  try
+  {
+    next.validate();
+  }
+  catch (const std::invalid_argument& e)
+  {
+    diagnostics_.health().reportError(getName(), std::string("reconfigure refused: ") + e.what());
+    config.max_linear_speed = parameters_.max_linear_speed;
+    config.max_angular_speed = parameters_.max_angular_speed;
+    config.cmd_vel_timeout = parameters_.cmd_vel_timeout;
+    return;
+  }
+  parameters_.max_linear_speed = next.max_linear_speed;  // for the next refusal's fallback
+  parameters_.max_angular_speed = next.max_angular_speed;
+  parameters_.cmd_vel_timeout = next.cmd_vel_timeout;
+  std::lock_guard<std::mutex> lock(command_mutex_);
+  pending_limits_ = std::make_unique<PioneerParameters>(next);
 }
 
 void PioneerDriverNodelet::onCommand(const geometry_msgs::TwistConstPtr& msg)
@@ -95,6 +122,13 @@ void PioneerDriverNodelet::run()
   {
     {
       std::lock_guard<std::mutex> lock(command_mutex_);
+      if (pending_limits_)
+      {
+        connection_->setMotionLimits(*pending_limits_);  // validated by reconfigure()
+        NODELET_INFO("caps %.2f m/s, %.2f rad/s, cmd_vel time-out %.2f s", pending_limits_->max_linear_speed,
+                     pending_limits_->max_angular_speed, pending_limits_->cmd_vel_timeout);
+        pending_limits_.reset();
+      }
       if (command_new_)
         connection_->setCommand(command_v_, command_w_, command_time_);
       command_new_ = false;

@@ -5,12 +5,15 @@
 #include <mutex>
 #include <thread>
 
+#include <boost/thread/recursive_mutex.hpp>
+#include <dynamic_reconfigure/server.h>
 #include <geometry_msgs/Twist.h>
 #include <nodelet/nodelet.h>
 #include <ros/ros.h>
 #include <tf2_ros/transform_broadcaster.h>
 
 #include "biovision_ros_common/nodelet_diagnostics.hpp"
+#include "pioneer_driver/PioneerDriverConfig.h"
 #include "pioneer_driver/pioneer_connection.hpp"
 #include "pioneer_driver/pioneer_odometry.hpp"
 
@@ -30,6 +33,7 @@ private:
   void run();
   void onCommand(const geometry_msgs::TwistConstPtr& msg);
   void publish(const StandardSip& sip);
+  void reconfigure(PioneerDriverConfig& config, uint32_t level);
 
   PioneerParameters parameters_;
   std::unique_ptr<PioneerConnection> connection_;
@@ -41,6 +45,9 @@ private:
   std::mutex command_mutex_;
   double command_v_ = 0.0, command_w_ = 0.0, command_time_ = -1e9;
   bool command_new_ = false;
+  std::unique_ptr<PioneerParameters> pending_limits_;  // from reconfigure, applied by the driver thread
+  boost::recursive_mutex reconfigure_mutex_;           // outlives the server (declared before it)
+  std::unique_ptr<dynamic_reconfigure::Server<PioneerDriverConfig>> reconfigure_server_;
   std::mutex status_mutex_;
   PioneerStatus status_;  // a copy for the diagnostics thread
   std::atomic<bool> running_{false};

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include <biovision_msgs/PioneerState.h>
 #include <dynamic_reconfigure/Reconfigure.h>
@@ -124,8 +125,9 @@ TEST_F(PioneerDriverNode, TheBaseStopsHalfASecondAfterTheLastCmdVel)
   const ros::WallTime last = ros::WallTime::now();
   ASSERT_TRUE(waitFor([] { return g_robot->setpoint().vel_mm_s == 0; }, 3.0));
   const double after = (ros::WallTime::now() - last).toSec();
+  std::printf("[ MEASURED ] stopped %.3f s after the last cmd_vel\n", after);
   EXPECT_GT(after, 0.35);
-  EXPECT_LT(after, 0.9);
+  EXPECT_LT(after, 1.0) << "the driver's 0.5 s time-out, not the robot's 2 s watchdog";
   ASSERT_TRUE(waitFor([&] { return std::abs(odom.last()->twist.twist.linear.x) < 1e-6; }, 1.0));
 }
 

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <functional>
 #include <thread>
@@ -80,13 +81,19 @@ TEST(PioneerConnection, CommandsArriveClampedAndOdometryFollowsTheRobot)
   spinUntil(
       c, &odom, [] { return false; }, 1.5, drive);
   EXPECT_LE(robot.maxAbsVel(), 400) << "never beyond the cap";
-  // The odometry from the SIPs matches the emulator's true pose (to the SIP period and mm rounding).
-  EXPECT_GT(odom.x(), 0.3);
-  EXPECT_NEAR(odom.x(), robot.x(), 0.06);
-  EXPECT_NEAR(odom.y(), robot.y(), 0.06);
-  EXPECT_NEAR(odom.yaw(), robot.yaw(), 0.05);
   EXPECT_NEAR(odom.linearVelocity(), 0.4, 0.01);
   EXPECT_NEAR(odom.angularVelocity(), 17 * M_PI / 180.0, 0.01);
+  // Stopped, the odometry from the SIPs equals the emulator's true pose (to the mm rounding of XPOS/YPOS
+  // and the 4096-step heading); moving, it lags by up to a SIP period, which a loaded machine stretches.
+  c.setCommand(0.0, 0.0, now());
+  ASSERT_TRUE(spinUntil(
+      c, &odom, [&] { return robot.setpoint() == ArcosVelocity{}; }, 1.0));
+  spinUntil(
+      c, &odom, [] { return false; }, 0.4);
+  EXPECT_GT(odom.x(), 0.3);
+  EXPECT_NEAR(odom.x(), robot.x(), 0.005);
+  EXPECT_NEAR(odom.y(), robot.y(), 0.005);
+  EXPECT_NEAR(odom.yaw(), robot.yaw(), 0.003);
 }
 
 TEST(PioneerConnection, TheWatchdogStopsTheBaseWithoutCmdVelAndPulsesKeepTheSessionAlive)
@@ -96,15 +103,16 @@ TEST(PioneerConnection, TheWatchdogStopsTheBaseWithoutCmdVelAndPulsesKeepTheSess
   ASSERT_TRUE(spinUntil(
       c, nullptr, [&] { return c.status().connected; }, 3.0))
       << c.status().last_error;
-  c.setCommand(0.2, 0.0, now());
-  ASSERT_TRUE(spinUntil(
-      c, nullptr, [&] { return robot.setpoint().vel_mm_s == 200; }, 1.0));
   const double last_command = now();
+  c.setCommand(0.2, 0.0, last_command);
+  ASSERT_TRUE(spinUntil(
+      c, nullptr, [&] { return robot.setpoint().vel_mm_s == 200; }, 0.4));
   ASSERT_TRUE(spinUntil(
       c, nullptr, [&] { return robot.setpoint().vel_mm_s == 0; }, 2.0));
   const double stopped_after = now() - last_command;
-  EXPECT_GT(stopped_after, 0.4);
-  EXPECT_LT(stopped_after, 0.7) << "the driver's 0.5 s time-out, not the robot's 2 s watchdog";
+  std::printf("[ MEASURED ] stopped %.3f s after the last command\n", stopped_after);
+  EXPECT_GT(stopped_after, 0.5);
+  EXPECT_LT(stopped_after, 0.8) << "the driver's 0.5 s time-out, not the robot's 2 s watchdog";
   EXPECT_TRUE(c.status().watchdog_stopped);
   const unsigned long pulses = robot.commandCount(kPulse);
   spinUntil(

@@ -18,7 +18,11 @@ std::vector<uint8_t> encodeDynamixelPacket(uint8_t id, uint8_t instruction, cons
   if (params.size() + 2 > 250)
     throw std::invalid_argument("encodeDynamixelPacket: " + std::to_string(params.size()) + " parameters, at most 248");
   const uint8_t length = static_cast<uint8_t>(params.size() + 2);
-  std::vector<uint8_t> p{0xFF, 0xFF, id, length, instruction};
+  // Reserved, then appended: GCC 12 warns (-Warray-bounds, a false positive) on insert after a braced list.
+  std::vector<uint8_t> p;
+  p.reserve(params.size() + 6);
+  for (uint8_t b : {uint8_t{0xFF}, uint8_t{0xFF}, id, length, instruction})
+    p.push_back(b);
   p.insert(p.end(), params.begin(), params.end());
   p.push_back(dynamixelChecksum(id, length, instruction, params));
   return p;
@@ -36,7 +40,9 @@ std::vector<uint8_t> readPacket(uint8_t id, uint8_t address, uint8_t length)
 
 std::vector<uint8_t> writePacket(uint8_t id, uint8_t address, const std::vector<uint8_t>& data)
 {
-  std::vector<uint8_t> params{address};
+  std::vector<uint8_t> params;
+  params.reserve(data.size() + 1);
+  params.push_back(address);
   params.insert(params.end(), data.begin(), data.end());
   return encodeDynamixelPacket(id, kWrite, params);
 }

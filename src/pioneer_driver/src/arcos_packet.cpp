@@ -25,7 +25,12 @@ std::vector<uint8_t> encodeArcosPacket(const std::vector<uint8_t>& data)
   if (data.empty() || data.size() + 2 > kMaxCount)
     throw std::invalid_argument("encodeArcosPacket: " + std::to_string(data.size()) + " data bytes outside [1, " +
                                 std::to_string(kMaxCount - 2) + "]");
-  std::vector<uint8_t> p{kHeader0, kHeader1, static_cast<uint8_t>(data.size() + 2)};
+  // Reserved, then appended: GCC 12 warns (-Warray-bounds, a false positive) on insert after a braced list.
+  std::vector<uint8_t> p;
+  p.reserve(data.size() + 5);
+  p.push_back(kHeader0);
+  p.push_back(kHeader1);
+  p.push_back(static_cast<uint8_t>(data.size() + 2));
   p.insert(p.end(), data.begin(), data.end());
   const uint16_t c = arcosChecksum(data);
   p.push_back(static_cast<uint8_t>(c >> 8));

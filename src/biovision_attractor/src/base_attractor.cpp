@@ -74,6 +74,7 @@ void BaseAttractor::newGoal()
   clock_started_ = false;
   escape_until_ = -1.0;
   travelled_ = 0.0;
+  heading_ = 0.0;
 }
 
 void BaseAttractor::reset()
@@ -163,6 +164,20 @@ BaseAttractor::Output BaseAttractor::update(const std::vector<Sector>& stm, doub
   {
     goal_bearing = wrap(goal_bearing);
     out.status = Status::kDriving;
+    // Trapped: for escape_time the dynamics steer to a heading a quarter turn towards the freer side of the
+    // one at the trap (held by integrating the commanded turn rate), around obstacles as usual.
+    const bool was_escaping = t < escape_until_;
+    updateTrapClock(goal_distance, t);
+    if (t < escape_until_)
+    {
+      if (!was_escaping)
+      {
+        escape_side_ = freerSide(stm, goal_bearing);
+        escape_heading_ = heading_ + escape_side_ * M_PI / 2;
+      }
+      out.status = Status::kTrapped;
+      goal_bearing = wrap(escape_heading_ - heading_);
+    }
 
     // The dead-ahead sector: which side to pass it on, kept while it stays blocked.
     bool ahead_blocked = false;
@@ -200,26 +215,20 @@ BaseAttractor::Output BaseAttractor::update(const std::vector<Sector>& stm, doub
       rate += out.forcelet[i];
     }
     out.heading_rate = rate;
-
-    updateTrapClock(goal_distance, t);
-    if (t < escape_until_)
     {
-      out.status = Status::kTrapped;
-      target_angular = escape_side_ * p_.max_angular / 2;
-    }
-    else
-    {
-      escape_side_ = freerSide(stm, goal_bearing);  // ready for the next escape
       target_angular = std::clamp(rate, -p_.max_angular, p_.max_angular);
       // Forward speed: the least of the limits below.
       const double heading_share = std::clamp(1.0 - std::abs(goal_bearing) / p_.heading_stop_angle, 0.0, 1.0);
       double v = p_.max_linear * heading_share;
+      // Arcs sweep the sides the camera has not seen: the faster the turn, the slower the drive.
+      v = std::min(v, p_.max_linear * std::clamp(1.0 - std::abs(target_angular) / p_.turn_slowdown, 0.0, 1.0));
       if (std::isfinite(goal_distance))
         v = std::min(v, std::sqrt(2 * 0.8 * p_.linear_accel * std::max(0.0, goal_distance - p_.goal_tolerance / 2)));
       const double c = out.front_clearance;
       if (c < p_.safety_distance)
       {
-        out.status = Status::kBlocked;
+        if (out.status == Status::kDriving)
+          out.status = Status::kBlocked;
         v = 0.0;
         brake_now = true;
       }
@@ -245,6 +254,7 @@ BaseAttractor::Output BaseAttractor::update(const std::vector<Sector>& stm, doub
   linear_ = std::isfinite(linear_) ? std::clamp(linear_, 0.0, p_.max_linear) : 0.0;
   angular_ = std::isfinite(angular_) ? std::clamp(angular_, -p_.max_angular, p_.max_angular) : 0.0;
   travelled_ += linear_ * dt;
+  heading_ = wrap(heading_ + angular_ * dt);
   out.linear = linear_;
   out.angular = angular_;
   return out;

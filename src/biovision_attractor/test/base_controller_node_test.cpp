@@ -6,6 +6,7 @@
 // this branch yet; the coordinator will switch the test to the memory node.
 #include <atomic>
 #include <cmath>
+#include <iostream>
 #include <mutex>
 #include <string>
 
@@ -178,6 +179,8 @@ TEST(BaseControllerNode, DrivesAroundTheBoxToTheGoalStopsThereAndTheWatchdogStop
   const ros::Time stopped = h.last_stm_;
   ASSERT_TRUE(waitFor([&] { return !h.first_zero_.isZero(); }, 5.0)) << "the watchdog never zeroed cmd_vel";
   const double delay = (h.first_zero_ - stopped).toSec();
+  std::cout << "watchdog: cmd_vel zeroed " << delay << " s (sim time) after the last STM" << std::endl;
+  testing::Test::RecordProperty("watchdog_delay_s", std::to_string(delay));
   EXPECT_LE(delay, 0.5) << "cmd_vel zeroed " << delay << " s (sim time) after the last STM";
   EXPECT_GT(delay, 0.0);
   EXPECT_TRUE(waitFor([&] { return h.behaviour() == "watchdog" || h.lastCmd().linear.x == 0; }, 2.0));

@@ -77,6 +77,20 @@ NavigationTrialResult runNavigationTrial(const biovision_sim::World& world, doub
   bool was_trapped = false, in_contact = false;
   double pan_sum = 0.0;
   long pan_count = 0;
+  // Active head: one sweep across the field before the goal is given, the base standing.
+  if (options.active_head && options.initial_scan > 0)
+  {
+    const long scan_steps = static_cast<long>(std::ceil(options.initial_scan * options.physics_rate));
+    for (long step = 0; step < scan_steps; ++step)
+    {
+      const double t = -options.initial_scan + step * physics_dt;
+      const double phase = static_cast<double>(step) / scan_steps;
+      pan_servo.command(phase < 0.25 ? -1.4 : phase < 0.75 ? 1.4 : 0.0);
+      if (step % stm_every == 0)
+        stm_source->update(start_x, start_y, start_yaw, pan_servo.position(), t);
+      pan_servo.step(physics_dt);
+    }
+  }
   const long steps = static_cast<long>(std::ceil(options.timeout * options.physics_rate));
   for (long step = 0; step <= steps; ++step)
   {

@@ -15,8 +15,9 @@ namespace biovision_attractor
 /// simulator's DifferentialDrive (Pioneer 3DX limits, collisions from the FloorPlan footprints) and the
 /// head's pan servo, driven by BaseAttractor from an StmSource and, with an active head, by HeadAttractor in
 /// look_ahead mode. Salient regions for the head are a stand-in for the saliency pipeline: the labelled
-/// clutter (not walls) in the camera's view, peak 1 - distance / 6 m. A watchdog as the node's stops the
-/// base when the STM is older than watchdog_timeout.
+/// clutter (not walls) in the camera's view, peak 1 - distance / 6 m. With an active head the trial starts
+/// with one pan sweep while the base waits (initial_scan, not counted in the time). A watchdog as the
+/// node's stops the base when the STM is older than watchdog_timeout.
 struct NavigationTrialOptions
 {
   bool active_head = true;         ///< false: the head stays straight ahead
@@ -28,6 +29,8 @@ struct NavigationTrialOptions
   double watchdog_timeout = 0.5;   ///< [s]
   double horizontal_fov = 0.7505;  ///< [rad]
   double servo_speed = 3.0;        ///< [rad/s] the pan servo (biovision_sim's default)
+  double initial_scan = 3.0;       ///< [s] active head: before the goal is given, the pan sweeps -80..+80 deg once
+                                   ///< (the STM starts empty; a fixed head cannot do this)
 };
 
 struct NavigationTrialResult

@@ -27,8 +27,10 @@ namespace biovision_attractor
 /// The base never reverses.
 ///
 /// Trap detection: when the goal distance has not fallen by trap_progress for trap_time (a bearing-only
-/// goal: when the robot has not moved forward for trap_time), the status is kTrapped for escape_time and
-/// the robot turns in place towards the freer side; the clock then restarts.
+/// goal: when the robot has not moved forward by trap_progress for trap_time), the status is kTrapped for
+/// escape_time: the dynamics steer to a heading a quarter turn towards the freer side (turning in place
+/// first, as the speed falls with the heading error), around obstacles as usual; the clock then restarts.
+/// The speed also falls with the commanded turn rate (turn_slowdown): arcs sweep sides not seen.
 ///
 /// Never throws from update(); never commands beyond the limits or NaN (property-tested).
 class BaseAttractor
@@ -39,7 +41,7 @@ public:
     kIdle,     ///< no valid goal: stopped
     kDriving,  ///< heading for the goal
     kBlocked,  ///< an obstacle closer than safety_distance ahead: turning only
-    kTrapped,  ///< no progress for trap_time: turning in place towards the freer side
+    kTrapped,  ///< no progress for trap_time: escaping towards the freer side
     kReached   ///< within goal_tolerance: stopped
   };
 
@@ -99,6 +101,8 @@ private:
   double progress_time_ = 0.0;  // when progress was last made [s]
   double escape_until_ = -1.0;  // [s] trapped until then
   int escape_side_ = 1;
-  double travelled_ = 0.0;  // [m] commanded forward travel (progress towards a bearing-only goal)
+  double travelled_ = 0.0;       // [m] commanded forward travel (progress towards a bearing-only goal)
+  double heading_ = 0.0;         // [rad] integrated commanded turn rate since the goal was set
+  double escape_heading_ = 0.0;  // [rad] in the same reckoning: where an escape heads
 };
 }  // namespace biovision_attractor

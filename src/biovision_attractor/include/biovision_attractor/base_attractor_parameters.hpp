@@ -13,11 +13,11 @@ namespace biovision_attractor
 struct BaseAttractorParameters
 {
   // Heading dynamics: dphi/dt = alpha_goal sin(psi_goal - phi) + sum_i f_i (gain 1 as in the thesis, L1310).
-  double alpha_goal = 1.0;      ///< alpha_a [1/s]: goal attraction (thesis: 1)
-  double alpha_obstacle = 8.0;  ///< alpha_r [1/s] (beta_1 of Bicho): repeller strength at contact; thesis' 25 was
-                                ///< on unknown disparity units (tuned on the tuning seeds, docs/benchmarks.md)
-  double decay_distance = 0.5;  ///< beta_2 [m]: strength lambda_i = alpha_r exp(-clearance_i / beta_2)
-  double robot_radius = 0.26;   ///< R [m]: Pioneer 3DX footprint; widens each repeller (sigma_i, Bicho)
+  double alpha_goal = 1.0;       ///< alpha_a [1/s]: goal attraction (thesis: 1)
+  double alpha_obstacle = 20.0;  ///< alpha_r [1/s] (beta_1 of Bicho): repeller strength at contact; thesis 25 was
+                                 ///< on unknown disparity units (tuned on the tuning seeds, docs/benchmarks.md)
+  double decay_distance = 0.5;   ///< beta_2 [m]: strength lambda_i = alpha_r exp(-clearance_i / beta_2)
+  double robot_radius = 0.26;    ///< R [m]: Pioneer 3DX footprint; widens each repeller (sigma_i, Bicho)
   double max_range = 2.5;  ///< [m] sectors with no obstacle nearer than this do not repel (free space pushes nothing)
   double min_confidence = 0.1;   ///< sectors of lower STM confidence do not repel; above it lambda scales with it
   double symmetry_angle = 0.25;  ///< [rad] the dead-ahead sector's repeller sits this far to the side the robot
@@ -30,12 +30,13 @@ struct BaseAttractorParameters
   double safety_distance = 0.15;    ///< [m] clearance ahead at which the robot stops (and only turns)
   double slow_distance = 1.0;       ///< [m] clearance ahead below which it slows down linearly
   double corridor_margin = 0.1;     ///< [m] the swept corridor is robot_radius + this to either side
+  double turn_slowdown = 2.0;       ///< [rad/s] the speed falls linearly to 0 as the commanded turn rate reaches this
   double heading_stop_angle = 1.6;  ///< [rad] the speed falls linearly to 0 when the goal is this far off the heading
   double goal_tolerance = 0.2;      ///< [m] reached: closer than this to the goal (then stops)
   // Trap detection (not in the thesis).
   double trap_time = 12.0;     ///< [s] no progress (goal distance not down by trap_progress) this long: trapped
   double trap_progress = 0.3;  ///< [m]
-  double escape_time = 3.0;    ///< [s] a trapped robot turns in place towards the freer side this long
+  double escape_time = 6.0;    ///< [s] a trapped robot heads a quarter turn towards the freer side this long
 
   /// Throws std::invalid_argument naming the offending field and its range (namedDoubles' ranges, then
   /// slow_distance > safety_distance).

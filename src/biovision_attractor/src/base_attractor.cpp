@@ -209,7 +209,8 @@ BaseAttractor::Output BaseAttractor::update(const std::vector<Sector>& stm, doub
         continue;  // free space (and unknown) exerts nothing
       const double d = std::max(0.0, s.distance);
       const double clearance = std::max(0.0, d - p_.robot_radius);
-      out.strength[i] = p_.alpha_obstacle * confidence * std::exp(-clearance / p_.decay_distance);
+      // Not scaled by the confidence: a remembered obstacle beside the base does not fade while it stays there.
+      out.strength[i] = p_.alpha_obstacle * std::exp(-clearance / p_.decay_distance);
       out.sigma[i] = std::atan(std::tan(s.width / 2) + p_.robot_radius / (p_.robot_radius + d));
       out.forcelet[i] = repulsion(0.0, out.angle[i], 1.0, out.strength[i], 2 * out.sigma[i] * out.sigma[i]);
       rate += out.forcelet[i];
@@ -220,8 +221,19 @@ BaseAttractor::Output BaseAttractor::update(const std::vector<Sector>& stm, doub
       // Forward speed: the least of the limits below.
       const double heading_share = std::clamp(1.0 - std::abs(goal_bearing) / p_.heading_stop_angle, 0.0, 1.0);
       double v = p_.max_linear * heading_share;
-      // Arcs sweep the sides the camera has not seen: the faster the turn, the slower the drive.
+      // Arcs sweep the sides the camera has not seen: the faster the turn, the slower the drive; and a turn
+      // faster than blind_turn_rate into a side whose front sectors (up to 63 deg) the STM does not know
+      // creeps at a fifth of max_linear, so that the camera sees where the base will go (0 would stall it
+      // where the turn rate oscillates about the threshold).
       v = std::min(v, p_.max_linear * std::clamp(1.0 - std::abs(target_angular) / p_.turn_slowdown, 0.0, 1.0));
+      if (std::abs(target_angular) > p_.blind_turn_rate)
+        for (const Sector& s : stm)
+        {
+          const double a = std::isfinite(s.angle) ? wrap(s.angle) : 0.0;
+          if (a * target_angular > 0 && std::abs(a) > s.width / 2 && std::abs(a) <= 1.1 &&
+              confidenceOf(s) < p_.min_confidence)
+            v = std::min(v, 0.2 * p_.max_linear);
+        }
       if (std::isfinite(goal_distance))
         v = std::min(v, std::sqrt(2 * 0.8 * p_.linear_accel * std::max(0.0, goal_distance - p_.goal_tolerance / 2)));
       const double c = out.front_clearance;

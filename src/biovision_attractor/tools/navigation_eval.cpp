@@ -187,13 +187,15 @@ int main(int argc, char** argv)
   notes << "Seeds " << document["seeds"].get<std::string>() << " (" << split
         << " split; parameters were tuned on seeds 101-120, never on 1-20). STM source: ground_truth_range -- the "
            "9 sectors filled from the simulator's FloorPlan ranges only where the camera looks (head pan +- 21.5 "
-           "deg, 3 strips), out-of-view sectors moved with the exact odometry and aged -- NOT the disparity-based "
+           "deg, 3 strips, the nearest obstacle of each), obstacle points kept in the world frame out of view (so "
+           "moved by the exact odometry), aged and dropped beyond +-90 deg -- NOT the disparity-based "
            "biovision_memory. Reached = stopped within 0.3 m of the goal within "
         << trial.timeout
         << " s; time, path ratio over reached trials; min clearance = smallest gap between the base's disc and any "
            "footprint; collisions = contacts the drive reported; watchdog stops = control steps with an STM older "
            "than 0.5 s (never here: this loop delivers the STM at 5 Hz). Active head: HeadAttractor look_ahead "
-           "with the clutter in view as salient regions (a stand-in for saliency). Goals: >= 95% reached, 0 "
+           "with the clutter in view as salient regions (a stand-in for saliency), after one pan sweep before the goal "
+           "is given. Goals: >= 95% reached, 0 "
            "collisions, path ratio <= 1.5.";
   document["notes"] = notes.str();
   std::cout << document.dump(2) << "\n";

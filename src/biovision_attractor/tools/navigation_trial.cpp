@@ -4,8 +4,6 @@
 #include <cmath>
 #include <limits>
 #include <vector>
-#include <cstdio>
-#include <cstdlib>
 
 #include "biovision_attractor/base_attractor.hpp"
 #include "biovision_attractor/head_attractor.hpp"
@@ -125,15 +123,6 @@ NavigationTrialResult runNavigationTrial(const biovision_sim::World& world, doub
         const BaseAttractor::Output out = controller.update(stm, wrap(std::atan2(dy, dx) - yaw), distance, t,
                                                             control_dt);
         drive.command(out.linear, out.angular);
-        if (std::getenv("NAV_TRACE"))
-        {
-          std::fprintf(stderr, "t %.1f x %.2f y %.2f yaw %.2f gb %.2f d %.2f v %.2f w %.2f %s fc %.2f clr %.2f |", t, x,
-                       y, yaw, wrap(std::atan2(dy, dx) - yaw), distance, out.linear, out.angular,
-                       BaseAttractor::name(out.status), out.front_clearance, plan.clearance(x, y) - limits.radius);
-          for (const auto& s : stm)
-            std::fprintf(stderr, " %.2f/%.1f", s.distance, s.confidence);
-          std::fprintf(stderr, "\n");
-        }
         const bool trapped = out.status == BaseAttractor::Status::kTrapped;
         if (trapped && !was_trapped)
           ++result.trapped_events;

@@ -11,7 +11,7 @@ namespace biovision_attractor
 /// (phi = 0 is the current heading, REP-103: + = left):
 ///
 ///   dphi/dt = sineAttraction(0, psi_goal, alpha_goal) + sum_i repulsion(0, psi_i, 1, lambda_i, 2 sigma_i^2)
-///   lambda_i = alpha_obstacle * confidence_i * exp(-clearance_i / decay_distance)   (0 for free space)
+///   lambda_i = alpha_obstacle * exp(-clearance_i / decay_distance)   (0 for free space and confidence < min)
 ///   sigma_i  = atan(tan(width / 2) + R / (R + d_i))                                 (Bicho et al. 1998)
 ///
 /// where d_i is sector i's obstacle distance, clearance_i = max(0, d_i - R). The dead-ahead sector's

@@ -19,6 +19,7 @@
 #include <ros/ros.h>
 #include <std_msgs/String.h>
 #include <std_srvs/SetBool.h>
+#include <std_srvs/Trigger.h>
 
 #include "biovision_attractor/forcelets.hpp"
 #include "biovision_ros_common/rostest_helpers.hpp"
@@ -71,6 +72,8 @@ public:
       map.obstacle_distance.push_back(static_cast<float>(nearest));
       map.confidence.push_back(1.0f);
     }
+    if (future_stm_)
+      map.header.stamp += ros::Duration(5.0);
     stm_pub_.publish(map);
     last_stm_ = ros::Time::now();
   }
@@ -143,7 +146,7 @@ public:
   double max_linear_ = 0;
   std::string behaviour_;
   std::atomic<int> collisions_{0}, cmds_{0};
-  std::atomic<bool> publish_stm_{true};
+  std::atomic<bool> publish_stm_{true}, future_stm_{false};
 };
 }  // namespace
 
@@ -187,6 +190,59 @@ TEST(BaseControllerNode, DrivesAroundTheBoxToTheGoalStopsThereAndTheWatchdogStop
   // It stays stopped while no STM comes.
   ros::WallDuration(0.5).sleep();
   EXPECT_EQ(h.lastCmd().linear.x, 0.0);
+  EXPECT_EQ(h.collisions_, 0);
+}
+
+// Runs after the test above (gtest keeps declaration order): the controller still holds the goal 8 m ahead,
+// stopped by the watchdog; fresh STM lets it drive again.
+TEST(BaseControllerNode, HoldStopAndBadInputStopTheBase)
+{
+  Harness h;
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  biovision_ros_common::DiagnosticsWatch diagnostics(h.nh_, "base controller");
+  ASSERT_TRUE(waitFor([&] { return h.lastCmd().linear.x > 0.1; }, 20.0)) << "fresh STM: drives on to the goal";
+
+  std_srvs::SetBool hold;
+  hold.request.data = true;
+  ASSERT_TRUE(ros::service::call("base/hold", hold));
+  EXPECT_TRUE(waitFor([&] { return h.behaviour() == "hold" && h.lastCmd().linear.x == 0; }, 3.0));
+  hold.request.data = false;
+  ASSERT_TRUE(ros::service::call("base/hold", hold));
+  EXPECT_TRUE(waitFor([&] { return h.lastCmd().linear.x > 0.05; }, 10.0)) << "resumes after hold";
+
+  // A NaN goal: refused with an ERROR, the base stops.
+  diagnostics.clear();
+  h.sendGoal(std::nan(""), 0.0, "odom");
+  EXPECT_TRUE(waitFor([&] { return diagnostics.sawError(); }, 5.0)) << "no ERROR for a NaN goal";
+  EXPECT_TRUE(waitFor([&] { return h.lastCmd().linear.x == 0 && h.lastCmd().angular.z == 0; }, 3.0));
+
+  // A goal in a frame tf does not know: refused, stopped.
+  h.sendGoal(8.0, 0.0, "odom");
+  ASSERT_TRUE(waitFor([&] { return h.lastCmd().linear.x > 0.05; }, 10.0));
+  diagnostics.clear();
+  h.sendGoal(8.0, 0.0, "nowhere");
+  EXPECT_TRUE(waitFor([&] { return diagnostics.sawError(); }, 5.0)) << "no ERROR for an unknown frame";
+  EXPECT_TRUE(waitFor([&] { return h.lastCmd().linear.x == 0; }, 3.0));
+
+  // STM stamped 5 s in the future: rejected with an ERROR; without usable STM the watchdog stops the base.
+  h.sendGoal(8.0, 0.0, "odom");
+  ASSERT_TRUE(waitFor([&] { return h.lastCmd().linear.x > 0.05; }, 10.0));
+  diagnostics.clear();
+  h.future_stm_ = true;
+  EXPECT_TRUE(waitFor([&] { return diagnostics.sawError() && h.behaviour() == "watchdog"; }, 5.0))
+      << "behaviour " << h.behaviour();
+  EXPECT_EQ(h.lastCmd().linear.x, 0.0);
+  h.future_stm_ = false;
+
+  // stop: zero at once and the goal forgotten (fresh STM does not restart it).
+  ASSERT_TRUE(waitFor([&] { return h.lastCmd().linear.x > 0.05; }, 10.0));
+  std_srvs::Trigger stop;
+  ASSERT_TRUE(ros::service::call("base/stop", stop));
+  EXPECT_TRUE(stop.response.success);
+  EXPECT_TRUE(waitFor([&] { return h.lastCmd().linear.x == 0 && h.lastCmd().angular.z == 0; }, 2.0));
+  ros::WallDuration(1.0).sleep();
+  EXPECT_EQ(h.lastCmd().linear.x, 0.0) << "stopped stays stopped";
   EXPECT_EQ(h.collisions_, 0);
 }
 

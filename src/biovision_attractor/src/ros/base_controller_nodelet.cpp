@@ -320,6 +320,7 @@ void BaseControllerNodelet::step(const ros::TimerEvent& /*event*/)
   diagnostics_.clockJumps().observe(now);  // before mutex_: a jump runs onTimeJumpBack(), which takes it
   BaseAttractor::Output out;
   BaseAttractorParameters p;
+  std::string behaviour;
   double goal_bearing = std::nan("");
   enum
   {
@@ -375,9 +376,14 @@ void BaseControllerNodelet::step(const ros::TimerEvent& /*event*/)
       last_output_ = out;
       action = kCommand;
     }
+    behaviour = behaviour_;
   }
   if (action == kZero)
+  {
     publishZero();
+    // The behaviour (hold, watchdog, bumper, idle) for the task manager and plots; no forcelets.
+    publishState(BaseAttractor::Output(), behaviour, goal_bearing, now);
+  }
   if (action != kCommand)
     return;
   geometry_msgs::Twist cmd;
@@ -386,7 +392,7 @@ void BaseControllerNodelet::step(const ros::TimerEvent& /*event*/)
   cmd.angular.z = std::isfinite(out.angular) ? std::clamp(out.angular, -p.max_angular, p.max_angular) : 0.0;
   cmd_pub_.publish(cmd);
   diagnostics_.tick();
-  publishState(out, behaviour_, goal_bearing, now);
+  publishState(out, behaviour, goal_bearing, now);
 }
 
 void BaseControllerNodelet::publishState(const BaseAttractor::Output& out, const std::string& behaviour,

@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
+#include <std_msgs/Bool.h>
 #include <std_msgs/String.h>
 #include <std_srvs/SetBool.h>
 #include <std_srvs/Trigger.h>
@@ -235,7 +236,21 @@ TEST(BaseControllerNode, HoldStopAndBadInputStopTheBase)
   EXPECT_EQ(h.lastCmd().linear.x, 0.0);
   h.future_stm_ = false;
 
+  // The bumper (driver): stops the base and forgets the goal.
+  ASSERT_TRUE(waitFor([&] { return h.lastCmd().linear.x > 0.05; }, 10.0));
+  ros::Publisher bumper = h.nh_.advertise<std_msgs::Bool>("bumper", 1, true);
+  std_msgs::Bool pressed;
+  pressed.data = true;
+  bumper.publish(pressed);
+  EXPECT_TRUE(waitFor([&] { return h.behaviour() == "bumper" && h.lastCmd().linear.x == 0; }, 3.0))
+      << "behaviour " << h.behaviour();
+  pressed.data = false;
+  bumper.publish(pressed);
+  EXPECT_TRUE(waitFor([&] { return h.behaviour() == "idle"; }, 3.0)) << "released: the goal stays forgotten";
+  EXPECT_EQ(h.lastCmd().linear.x, 0.0);
+
   // stop: zero at once and the goal forgotten (fresh STM does not restart it).
+  h.sendGoal(8.0, 0.0, "odom");
   ASSERT_TRUE(waitFor([&] { return h.lastCmd().linear.x > 0.05; }, 10.0));
   std_srvs::Trigger stop;
   ASSERT_TRUE(ros::service::call("base/stop", stop));

@@ -12,12 +12,12 @@
 
 #include <biovision_msgs/AttractorState.h>
 #include <biovision_msgs/EgoMap.h>
+#include <biovision_msgs/PioneerState.h>
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/Twist.h>
 #include <gtest/gtest.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
-#include <std_msgs/Bool.h>
 #include <std_msgs/String.h>
 #include <std_srvs/SetBool.h>
 #include <std_srvs/Trigger.h>
@@ -236,15 +236,16 @@ TEST(BaseControllerNode, HoldStopAndBadInputStopTheBase)
   EXPECT_EQ(h.lastCmd().linear.x, 0.0);
   h.future_stm_ = false;
 
-  // The bumper (driver): stops the base and forgets the goal.
+  // A bumper (pioneer_driver's pioneer_state): stops the base and forgets the goal.
   ASSERT_TRUE(waitFor([&] { return h.lastCmd().linear.x > 0.05; }, 10.0));
-  ros::Publisher bumper = h.nh_.advertise<std_msgs::Bool>("bumper", 1, true);
-  std_msgs::Bool pressed;
-  pressed.data = true;
+  ros::Publisher bumper = h.nh_.advertise<biovision_msgs::PioneerState>("pioneer_state", 1, true);
+  biovision_msgs::PioneerState pressed;
+  pressed.connected = pressed.motors_enabled = true;
+  pressed.front_bumpers = 0x04;
   bumper.publish(pressed);
   EXPECT_TRUE(waitFor([&] { return h.behaviour() == "bumper" && h.lastCmd().linear.x == 0; }, 3.0))
       << "behaviour " << h.behaviour();
-  pressed.data = false;
+  pressed.front_bumpers = 0;
   bumper.publish(pressed);
   EXPECT_TRUE(waitFor([&] { return h.behaviour() == "idle"; }, 3.0)) << "released: the goal stays forgotten";
   EXPECT_EQ(h.lastCmd().linear.x, 0.0);

@@ -67,10 +67,7 @@ void BaseControllerNodelet::onInit()
   odom_sub_ = nh.subscribe("odom", 20, &BaseControllerNodelet::onOdom, this);
   goal_sub_ = nh.subscribe("goal", 5, &BaseControllerNodelet::onGoal, this);
   bearing_sub_ = nh.subscribe("goal_bearing", 5, &BaseControllerNodelet::onGoalBearing, this);
-  bumper_sub_ = nh.subscribe<std_msgs::Bool>("bumper", 5,
-                                             [this](const std_msgs::BoolConstPtr& m) { onBumper(m, "bumper"); });
-  stall_sub_ = nh.subscribe<std_msgs::Bool>("motor_stall", 5,
-                                            [this](const std_msgs::BoolConstPtr& m) { onBumper(m, "motor_stall"); });
+  pioneer_sub_ = nh.subscribe("pioneer_state", 5, &BaseControllerNodelet::onPioneerState, this);
   stop_srv_ = nh.advertiseService("base/stop", &BaseControllerNodelet::onStop, this);
   hold_srv_ = nh.advertiseService("base/hold", &BaseControllerNodelet::onHold, this);
   timer_ = nh.createTimer(ros::Duration(1.0 / settings_.control_rate), &BaseControllerNodelet::step, this);
@@ -255,18 +252,21 @@ void BaseControllerNodelet::onGoalBearing(const std_msgs::Float64ConstPtr& msg)
     refuseGoal("a bearing before any odometry");
 }
 
-void BaseControllerNodelet::onBumper(const std_msgs::BoolConstPtr& msg, const std::string& what)
+void BaseControllerNodelet::onPioneerState(const biovision_msgs::PioneerStateConstPtr& msg)
 {
+  const std::string what = msg->front_bumpers != 0 || msg->rear_bumpers != 0 ? "bumper"
+                           : msg->left_stall || msg->right_stall             ? "stall"
+                                                                             : "";
   std::lock_guard<std::mutex> lock(mutex_);
-  if (msg->data)
+  if (!what.empty())
   {
     if (stopped_by_.empty())
-      NODELET_WARN("%s: stopping the base and forgetting the goal", what.c_str());
+      NODELET_WARN("pioneer_state reports a %s: stopping the base and forgetting the goal", what.c_str());
     stopped_by_ = what;
     mode_ = Mode::kIdle;
     attractor_->stop();
   }
-  else if (stopped_by_ == what)
+  else
     stopped_by_.clear();
 }
 
@@ -451,7 +451,7 @@ void BaseControllerNodelet::details(diagnostic_updater::DiagnosticStatusWrapper&
     status.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN, "watchdog: STM or odometry stale, base stopped");
   else if (behaviour_ == "trapped")
     status.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN, "trapped: no progress, turning to the freer side");
-  else if (behaviour_ == "bumper" || behaviour_ == "motor_stall")
+  else if (behaviour_ == "bumper" || behaviour_ == "stall")
     status.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN, behaviour_ + ": base stopped");
 }
 }  // namespace biovision_attractor

@@ -7,13 +7,13 @@
 
 #include <biovision_attractor/BaseControllerConfig.h>
 #include <biovision_msgs/EgoMap.h>
+#include <biovision_msgs/PioneerState.h>
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <dynamic_reconfigure/server.h>
 #include <geometry_msgs/PoseStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <nodelet/nodelet.h>
 #include <ros/ros.h>
-#include <std_msgs/Bool.h>
 #include <std_msgs/Float64.h>
 #include <std_srvs/SetBool.h>
 #include <std_srvs/Trigger.h>
@@ -38,11 +38,11 @@ namespace biovision_attractor
 /// ~odom_frame), `goal` (geometry_msgs/PoseStamped in any frame tf can transform into ~odom_frame at the
 /// latest time; a NaN, a goal farther than ~max_goal_distance or a missing transform is refused with an
 /// ERROR and stops the base), `goal_bearing` (std_msgs/Float64 [rad, base_link, + = left]: drive on that
-/// odometry heading until stopped), optional `bumper` and `motor_stall` (std_msgs/Bool: true stops the base
-/// and clears the goal).
+/// odometry heading until stopped), optional `pioneer_state` (biovision_msgs/PioneerState from
+/// pioneer_driver: a pressed bumper or a stalled wheel stops the base and clears the goal).
 /// Out: `cmd_vel` (geometry_msgs/Twist, never beyond max_linear/max_angular, never NaN), `attractor/base`
 /// (biovision_msgs/AttractorState: behaviour idle | goal | blocked | trapped | reached | hold | watchdog |
-/// bumper; per sector the repeller angle, strength lambda_i (repulsion) and forcelet; the goal's attraction
+/// bumper | stall; per sector the repeller angle, strength lambda_i (repulsion) and forcelet; the goal's attraction
 /// in its sector; rate; target = goal bearing), `/diagnostics`.
 /// Services: `base/stop` (std_srvs/Trigger: zero and forget the goal), `base/hold` (std_srvs/SetBool: true
 /// = zero and keep the goal, false = resume).
@@ -74,7 +74,7 @@ private:
   void onOdom(const nav_msgs::OdometryConstPtr& msg);
   void onGoal(const geometry_msgs::PoseStampedConstPtr& msg);
   void onGoalBearing(const std_msgs::Float64ConstPtr& msg);
-  void onBumper(const std_msgs::BoolConstPtr& msg, const std::string& what);
+  void onPioneerState(const biovision_msgs::PioneerStateConstPtr& msg);
   bool onStop(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   bool onHold(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res);
   void onTimeJumpBack();
@@ -87,7 +87,7 @@ private:
 
   BaseControllerSettings settings_;
   ros::Publisher cmd_pub_, state_pub_;
-  ros::Subscriber stm_sub_, odom_sub_, goal_sub_, bearing_sub_, bumper_sub_, stall_sub_;
+  ros::Subscriber stm_sub_, odom_sub_, goal_sub_, bearing_sub_, pioneer_sub_;
   ros::ServiceServer stop_srv_, hold_srv_;
   ros::Timer timer_;
   std::unique_ptr<tf2_ros::Buffer> tf_buffer_;
@@ -105,8 +105,8 @@ private:
   Pose pose_;
   Mode mode_ = Mode::kIdle;
   double goal_x_ = 0, goal_y_ = 0, goal_heading_ = 0;
-  bool hold_ = false, bumper_ = false;
-  std::string stopped_by_;  // "bumper", "motor_stall" while one is pressed
+  bool hold_ = false;
+  std::string stopped_by_;  // "bumper" or "stall" while the driver reports one
   ros::Time last_step_;
   std::string behaviour_ = "idle";
   BaseAttractor::Output last_output_;

@@ -3,13 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "biovision_sim/floor_plan.hpp"
+
 namespace biovision_sim
 {
-namespace
-{
-constexpr double kBaseHeight = 1.2;  // the robot with its mast [m]: objects above it do not collide
-}
-
 DifferentialDrive::DifferentialDrive(const Limits& limits, double x, double y, double yaw)
   : limits_(limits), x_(x), y_(y), yaw_(yaw)
 {
@@ -28,25 +25,7 @@ void DifferentialDrive::command(double linear, double angular)
 
 std::string DifferentialDrive::obstacleAt(double x, double y, const World& world) const
 {
-  for (const auto& o : world.objects())
-  {
-    if (!o.obstacle || o.position.z() - o.size.z() / 2 > kBaseHeight)
-      continue;
-    const double dx = x - o.position.x(), dy = y - o.position.y();
-    if (o.shape == "cylinder")
-    {
-      if (std::hypot(dx, dy) < o.size.x() / 2 + limits_.radius)
-        return o.label;
-      continue;
-    }
-    // Box: distance from the disc centre to the rotated rectangle.
-    const double c = std::cos(o.yaw), s = std::sin(o.yaw);
-    const double lx = c * dx + s * dy, ly = -s * dx + c * dy;
-    const double qx = std::max(0.0, std::abs(lx) - o.size.x() / 2), qy = std::max(0.0, std::abs(ly) - o.size.y() / 2);
-    if (std::hypot(qx, qy) < limits_.radius)
-      return o.label;
-  }
-  return "";
+  return FloorPlan(world).obstacleAt(x, y, limits_.radius);
 }
 
 bool DifferentialDrive::step(double dt, const World& world)

@@ -11,7 +11,9 @@
 #include <gtest/gtest.h>
 
 #include "biovision_sim/differential_drive.hpp"
+#include "biovision_sim/floor_plan.hpp"
 #include "biovision_sim/kinematic_chain.hpp"
+#include "biovision_sim/room_world_generator.hpp"
 #include "biovision_sim/scene_renderer.hpp"
 #include "biovision_sim/servo.hpp"
 #include "biovision_sim/simulator_parameters.hpp"
@@ -203,6 +205,131 @@ TEST(DifferentialDrive, CollisionStopsTheBase)
   const double x = base.x();
   base.step(0.02, w);  // stays stopped
   EXPECT_EQ(base.x(), x);
+}
+
+namespace
+{
+// A disc of radius 0.5 at (3, 0) and a 2 x 1 box at (0, 4) turned by 90 deg (so 1 wide in x, 2 long in y).
+World twoObstacles()
+{
+  World w = World::parse("name: test\nfloor: {size: 2}\n");
+  World::Object disc;
+  disc.label = "bin";
+  disc.shape = "cylinder";
+  disc.position = Eigen::Vector3d(3, 0, 0.3);
+  disc.size = Eigen::Vector3d(1.0, 1.0, 0.6);
+  w.addObject(disc);
+  World::Object box;
+  box.label = "crate";
+  box.shape = "box";
+  box.position = Eigen::Vector3d(0, 4, 0.5);
+  box.yaw = M_PI / 2;
+  box.size = Eigen::Vector3d(2, 1, 1);
+  w.addObject(box);
+  World::Object lamp = box;  // hangs above the robot: not in the plan
+  lamp.label = "lamp";
+  lamp.position = Eigen::Vector3d(-3, 0, 2.0);
+  lamp.size = Eigen::Vector3d(0.5, 0.5, 0.2);
+  w.addObject(lamp);
+  World::Object rug = box;  // obstacle: false
+  rug.label = "rug";
+  rug.obstacle = false;
+  rug.position = Eigen::Vector3d(-3, -3, 0.01);
+  w.addObject(rug);
+  return w;
+}
+}  // namespace
+
+TEST(FloorPlan, KeepsOnlyFootprintsTheBaseCanHit)
+{
+  const FloorPlan plan(twoObstacles());
+  ASSERT_EQ(plan.footprints().size(), 2u);
+  EXPECT_EQ(plan.footprints()[0].label, "bin");
+  EXPECT_TRUE(plan.footprints()[0].disc);
+  EXPECT_EQ(plan.footprints()[1].label, "crate");
+}
+
+TEST(FloorPlan, ClearanceIsTheDistanceToTheNearestBoundary)
+{
+  const FloorPlan plan(twoObstacles());
+  EXPECT_NEAR(plan.clearance(1.0, 0.0), 1.5, 1e-9);  // disc edge at x = 2.5
+  EXPECT_NEAR(plan.clearance(0.0, 2.0), 1.0, 1e-9);  // the turned box spans y in [3, 5]
+  EXPECT_NEAR(plan.clearance(1.5, 4.0), 1.0, 1e-9);  // and x in [-0.5, 0.5]
+  EXPECT_EQ(plan.clearance(3.1, 0.1), 0.0);          // inside the disc
+  EXPECT_EQ(plan.obstacleAt(2.0, 0.0, 0.6), "bin");
+  EXPECT_EQ(plan.obstacleAt(2.0, 0.0, 0.4), "");
+  EXPECT_EQ(plan.obstacleAt(-3.0, 0.0, 0.4), "");  // under the lamp
+  EXPECT_EQ(FloorPlan(World::parse("name: e\n")).clearance(0, 0), kInf);
+}
+
+TEST(FloorPlan, RangeMeetsTheFirstBoundaryAlongTheBearing)
+{
+  const FloorPlan plan(twoObstacles());
+  EXPECT_NEAR(plan.range(0, 0, 0.0, 10), 2.5, 1e-9);
+  EXPECT_NEAR(plan.range(0, 0, M_PI / 2, 10), 3.0, 1e-9);
+  EXPECT_EQ(plan.range(0, 0, M_PI / 2, 2.9), kInf);  // beyond max_range
+  EXPECT_EQ(plan.range(0, 0, M_PI, 10), kInf);       // nothing behind
+  // Grazing the disc's top at y = 0.4: enters where x = 3 - sqrt(0.25 - 0.16) = 2.7.
+  EXPECT_NEAR(plan.range(0, 0.4, 0.0, 10), 2.7, 1e-9);
+  EXPECT_EQ(plan.range(3, 0, 1.0, 10), 0.0);  // from inside
+  // Along a diagonal into the box's corner region: the ray from (2, 2) at 135 deg enters x = 0.5 at y = 3.5.
+  EXPECT_NEAR(plan.range(2, 2, 3 * M_PI / 4, 10), std::hypot(1.5, 1.5), 1e-9);
+}
+
+TEST(FloorPlan, RasterMarksTheFootprintCells)
+{
+  const FloorPlan plan(twoObstacles());
+  const cv::Mat1b grid = plan.rasterize(-1.0, -1.0, 0.1, 70, 50);  // x in [-1, 4), y in [-1, 6)
+  auto at = [&](double x, double y) { return grid(int((y + 1.0) / 0.1), int((x + 1.0) / 0.1)); };
+  EXPECT_EQ(at(3.05, 0.05), 255);  // disc centre
+  EXPECT_EQ(at(0.05, 4.05), 255);  // box centre
+  EXPECT_EQ(at(1.05, 1.05), 0);    // free
+  EXPECT_EQ(at(3.05, -0.95), 0);   // beside the disc
+  // The disc covers about pi r^2 = 0.785 m^2 = 78.5 cells, grown by half a cell all round.
+  const cv::Mat1b disc = grid(cv::Rect(30, 0, 20, 20));
+  EXPECT_NEAR(cv::countNonZero(disc), M_PI * 0.55 * 0.55 / 0.01, 8);
+}
+
+TEST(RoomWorldGenerator, RoomsAreSeededWithStartAndGoalApartAndClear)
+{
+  const RoomWorldGenerator generator;
+  for (unsigned seed = 1; seed <= 20; ++seed)
+  {
+    const RoomWorldGenerator::Room room = generator.generate(seed);
+    const FloorPlan plan(room.world);
+    EXPECT_GE(std::hypot(room.goal_x - room.start_x, room.goal_y - room.start_y), 4.0) << "seed " << seed;
+    EXPECT_GE(plan.clearance(room.goal_x, room.goal_y), generator.options().free_radius) << "seed " << seed;
+    EXPECT_GE(plan.clearance(room.start_x, room.start_y), generator.options().free_radius) << "seed " << seed;
+    EXPECT_GE(plan.footprints().size(), 4u + generator.options().min_clutter / 2) << "walls and some clutter";
+    // Inside the room.
+    EXPECT_GT(room.goal_x, 0);
+    EXPECT_LT(room.goal_x, room.width);
+    EXPECT_LT(std::abs(room.goal_y), room.depth / 2);
+  }
+  const RoomWorldGenerator::Room a = generator.generate(7), b = generator.generate(7), c = generator.generate(8);
+  ASSERT_EQ(a.world.objects().size(), b.world.objects().size());
+  for (size_t i = 0; i < a.world.objects().size(); ++i)
+    EXPECT_EQ(a.world.objects()[i].position, b.world.objects()[i].position) << "the same seed, the same world";
+  EXPECT_EQ(a.goal_x, b.goal_x);
+  EXPECT_NE(a.goal_x, c.goal_x) << "another seed, another world";
+}
+
+TEST(RoomWorldGenerator, BadOptionsThrowNamingTheField)
+{
+  RoomWorldGenerator::Options o;
+  o.min_start_goal = 20.0;
+  EXPECT_THROW(RoomWorldGenerator{o}, std::invalid_argument);
+  o = RoomWorldGenerator::Options();
+  o.min_clutter = 9;
+  try
+  {
+    RoomWorldGenerator g(o);
+    ADD_FAILURE() << "min_clutter > max_clutter accepted";
+  }
+  catch (const std::invalid_argument& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("min_clutter"), std::string::npos) << e.what();
+  }
 }
 
 TEST(KinematicChain, ComposesOriginsAndJoints)

@@ -1,0 +1,15 @@
+#pragma once
+
+#include <opencv2/core.hpp>
+
+namespace biovision_hri
+{
+/// One detection window in image coordinates.
+struct Detection
+{
+  cv::Rect2f box;     ///< window [image px]
+  float score = 0.f;  ///< linear SVM decision value w.x + b (> 0 = positive side) [unitless]
+  float scale = 1.f;  ///< pyramid level scale the window was found at (level px per image px; 1 = full size)
+  int cell_size = 0;  ///< pooling cell side at that level [level px]
+};
+}  // namespace biovision_hri

@@ -1,0 +1,82 @@
+#pragma once
+
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include <biovision_hri/HriConfig.h>
+#include <biovision_msgs/SalientRegionArray.h>
+#include <dynamic_reconfigure/server.h>
+#include <image_transport/image_transport.h>
+#include <ros/ros.h>
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/JointState.h>
+#include <std_srvs/Trigger.h>
+
+#include <boost/thread/recursive_mutex.hpp>
+
+#include "biovision_hri/gesture_recognizer.hpp"
+#include "biovision_hri/greet_behaviour.hpp"
+#include "biovision_hri/ros/hri_config.hpp"
+#include "biovision_hri/sliding_window_detector.hpp"
+#include "biovision_ros_common/clock_jump_guard.hpp"
+#include "biovision_ros_common/lazy_nodelet.hpp"
+#include "biovision_ros_common/nodelet_diagnostics.hpp"
+
+namespace biovision_hri
+{
+/// ROS wrapper of the HRI cores (thesis ch. 2). Subscribes the left `image` (and `saliency/regions` for
+/// hands in salient regions, `joint_states` for the greet behaviour) only while someone listens to
+/// `hri/faces`, `hri/hands` or `hri/gestures` (LazyNodelet; `~lazy: false` keeps it on). Publishes the
+/// detections of every image, gestures in the hand boxes, and runs GreetBehaviour when `hri/greet` is
+/// called: it puts the head controller on hold (`head/set_mode`), commands `<pan_joint>/command` and
+/// `<tilt_joint>/command` inside the joint limits, publishes the gesture's action on `hri/action`, and
+/// gives the head back (`explore`) when it finishes.
+class HriNodelet : public biovision_ros_common::LazyNodelet
+{
+public:
+  ~HriNodelet() override;
+
+private:
+  void onInitNodelet() override;
+  void subscribe() override;
+  void unsubscribe() override;
+  void imageCallback(const sensor_msgs::ImageConstPtr& msg);
+  void regionsCallback(const biovision_msgs::SalientRegionArrayConstPtr& msg);
+  void jointCallback(const sensor_msgs::JointStateConstPtr& msg);
+  bool greet(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+  bool stopGreet(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+  void reconfigure(HriConfig& config, uint32_t level);
+  void details(diagnostic_updater::DiagnosticStatusWrapper& status);
+  void setHeadMode(const std::string& mode);
+
+  std::unique_ptr<image_transport::ImageTransport> it_;
+  image_transport::Subscriber image_sub_;
+  ros::Subscriber regions_sub_, joint_sub_;
+  std::string input_topic_;
+  ros::Publisher faces_pub_, hands_pub_, gestures_pub_, action_pub_, pan_pub_, tilt_pub_;
+  ros::ServiceServer greet_srv_, stop_srv_;
+  ros::ServiceClient head_mode_client_;
+  std::string pan_joint_, tilt_joint_;
+  double max_input_age_ = 0.5;
+
+  std::mutex mutex_;  // guards everything below
+  std::unique_ptr<SlidingWindowDetector> face_detector_, hand_detector_;
+  std::unique_ptr<GestureRecognizer> gestures_;
+  std::unique_ptr<GreetBehaviour> behaviour_;
+  GreetBehaviour::Parameters greet_base_;
+  HriParameters parameters_;
+  biovision_msgs::SalientRegionArrayConstPtr regions_;
+  double pan_ = 0.0, tilt_ = 0.0;
+  bool have_joints_ = false;
+  bool start_requested_ = false;
+  std::string last_action_, last_reason_;
+  double last_ms_ = 0.0;
+  size_t last_faces_ = 0, last_hands_ = 0, last_gestures_ = 0;
+  biovision_ros_common::ClockJumpGuard image_clock_{0.0};
+
+  boost::recursive_mutex reconfigure_mutex_;  // dynamic_reconfigure::Server takes a boost mutex; outlives it
+  std::unique_ptr<dynamic_reconfigure::Server<HriConfig>> reconfigure_server_;
+  biovision_ros_common::NodeletDiagnostics diagnostics_;
+};
+}  // namespace biovision_hri

@@ -1,0 +1,31 @@
+#include "biovision_hri/feature_layout.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace biovision_hri
+{
+namespace
+{
+void check(bool ok, const std::string& message)
+{
+  if (!ok)
+    throw std::invalid_argument("FeatureLayout: " + message);
+}
+}  // namespace
+
+void FeatureLayout::validate() const
+{
+  check(std::isfinite(wavelength) && wavelength >= 2.0 && wavelength <= 16.0,
+        "wavelength must be in [2, 16] px, got " + std::to_string(wavelength));
+  check(orientations >= 4 && orientations <= 12,
+        "orientations must be in [4, 12], got " + std::to_string(orientations));
+  check(cell_size >= 3 && cell_size <= 16, "cell_size must be in [3, 16] px, got " + std::to_string(cell_size));
+  check(block_cells >= 1 && block_cells <= 4, "block_cells must be in [1, 4], got " + std::to_string(block_cells));
+  check(window_blocks >= 1 && window_blocks <= 12,
+        "window_blocks must be in [1, 12], got " + std::to_string(window_blocks));
+  check(std::isfinite(epsilon) && epsilon >= 0.0 && epsilon <= 1.0,
+        "epsilon must be in [0, 1], got " + std::to_string(epsilon));
+}
+}  // namespace biovision_hri

@@ -1,0 +1,76 @@
+#include "biovision_hri/linear_detector_model.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "biovision_common/payload_writer.hpp"
+#include "biovision_common/stored_file.hpp"
+
+namespace biovision_hri
+{
+namespace
+{
+const char* const kMagic = "BVHRIDET";
+constexpr uint32_t kVersion = 1;
+}  // namespace
+
+void LinearDetectorModel::validate() const
+{
+  if (kind.empty())
+    throw std::invalid_argument("LinearDetectorModel: empty kind");
+  layout.validate();
+  if (static_cast<int>(weights.size()) != layout.featureCount())
+    throw std::invalid_argument("LinearDetectorModel: " + std::to_string(weights.size()) + " weights for " +
+                                std::to_string(layout.featureCount()) + " features");
+  for (float w : weights)
+    if (!std::isfinite(w))
+      throw std::invalid_argument("LinearDetectorModel: a weight is not finite");
+  if (!std::isfinite(bias))
+    throw std::invalid_argument("LinearDetectorModel: the bias is not finite");
+}
+
+float LinearDetectorModel::score(const float* features) const
+{
+  float s = bias;
+  for (size_t i = 0; i < weights.size(); ++i)
+    s += weights[i] * features[i];
+  return s;
+}
+
+void LinearDetectorModel::save(const std::string& path) const
+{
+  validate();
+  biovision_common::PayloadWriter w;
+  w.putString(kind);
+  w.put<double>(layout.wavelength);
+  w.put<int32_t>(layout.orientations);
+  w.put<int32_t>(layout.cell_size);
+  w.put<int32_t>(layout.block_cells);
+  w.put<int32_t>(layout.window_blocks);
+  w.put<double>(layout.epsilon);
+  w.putArray(weights.data(), weights.size());
+  w.put<float>(bias);
+  w.putString(provenance);
+  biovision_common::StoredFile::write(path, kMagic, kVersion, w.bytes());
+}
+
+LinearDetectorModel LinearDetectorModel::load(const std::string& path)
+{
+  return biovision_common::StoredFile::load<LinearDetectorModel>(path, kMagic, kVersion, "detector model",
+                                                                 [](biovision_common::PayloadReader& r) {
+                                                                   LinearDetectorModel m;
+                                                                   m.kind = r.getString(64);
+                                                                   m.layout.wavelength = r.get<double>();
+                                                                   m.layout.orientations = r.get<int32_t>();
+                                                                   m.layout.cell_size = r.get<int32_t>();
+                                                                   m.layout.block_cells = r.get<int32_t>();
+                                                                   m.layout.window_blocks = r.get<int32_t>();
+                                                                   m.layout.epsilon = r.get<double>();
+                                                                   m.weights = r.getArray<float>(1u << 20);
+                                                                   m.bias = r.get<float>();
+                                                                   m.provenance = r.getString(1u << 16);
+                                                                   m.validate();
+                                                                   return m;
+                                                                 });
+}
+}  // namespace biovision_hri

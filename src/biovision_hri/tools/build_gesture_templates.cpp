@@ -1,0 +1,81 @@
+// Builds the gesture template file for the hri node: the template part of the LinTO frames (their
+// earlier recording session; hand box from the annotation) under their gesture labels, plus rejection
+// templates ("none") from random patches of the training scenes. Stored as an ObjectMemory
+// (StoredFile "BVOBJMEM": checksummed, atomic, tied to the descriptor model).
+
+#include <iostream>
+
+#include <ros/package.h>
+
+#include "biovision_common/tool_options.hpp"
+#include "biovision_hri/gesture_recognizer.hpp"
+#include "hri_datasets.hpp"
+
+using namespace biovision_hri;
+
+int main(int argc, char** argv)
+{
+  std::string out, data = hriDataRoot("../shared"), set = "linto", json_path;
+  std::string descriptor_model = ros::package::getPath("biovision_recognition") + "/models/v1_ldahash_128.bin";
+  int rejection = 20, seed = 3;
+  biovision_common::ToolOptions options("build_gesture_templates",
+                                        "Builds the gesture templates of the hri node from the template part of a "
+                                        "gesture set\n(LinTO: earlier session; Triesch: first half of the people) "
+                                        "plus rejection templates from training scenes.");
+  CLI::App& app = options.app();
+  app.add_option("--out", out, "template file to write (the node's ~gesture_templates)")->required();
+  app.add_option("--set", set, "linto or triesch")->check(CLI::IsMember({"linto", "triesch"}));
+  app.add_option("--data", data, "the hri data folder ($BIOVISION_SHARED/data/hri)");
+  app.add_option("--descriptor-model", descriptor_model, "biovision_recognition descriptor model");
+  app.add_option("--rejection", rejection, "rejection templates ('none') from random training-scene patches")
+      ->check(biovision_common::kNonNegative);
+  app.add_option("--seed", seed, "seed of the rejection patches");
+  app.add_option("--json", json_path, "write a summary");
+  options.parse(argc, argv);
+  try
+  {
+    auto descriptor = std::make_shared<const biovision_recognition::V1Descriptor>(
+        biovision_recognition::DescriptorModel::load(descriptor_model));
+    GestureRecognizer recognizer(descriptor, GestureRecognizer::Parameters());
+    const auto samples = set == "linto" ? lintoSamples(data) : trieschSamples(data);
+    nlohmann::ordered_json per_label;
+    for (const auto& g : samples)
+    {
+      if (!g.template_part)
+        continue;
+      cv::Mat image = readGray(g.file);
+      cv::Rect box = g.box;
+      if (set == "triesch")
+      {
+        cv::copyMakeBorder(image, image, 20, 20, 20, 20, cv::BORDER_REPLICATE);
+        box = cv::Rect(20, 20, image.cols - 40, image.rows - 40);
+      }
+      const size_t k = recognizer.addTemplate(image, box, g.label);
+      per_label[g.label] = per_label.value(g.label, 0) + 1;
+      std::cerr << "build_gesture_templates: " << g.label << " <- " << g.file << " (" << k << " keypoints)\n";
+    }
+    std::vector<cv::Mat> scenes;
+    for (const auto& f : splitPart(sceneFiles(data), Split::Train))
+      scenes.push_back(readGray(f));
+    cv::RNG rng(static_cast<uint64_t>(seed));
+    for (const cv::Mat& patch : randomScenePatches(scenes, rejection, rng, 100, 250))
+      recognizer.addTemplate(patch, cv::Rect(0, 0, patch.cols, patch.rows), "none");
+    recognizer.saveTemplates(out);
+    std::cerr << "build_gesture_templates: wrote " << out << ": " << recognizer.templates().views().size()
+              << " templates, " << recognizer.templates().codeCount() << " codes\n";
+    if (!json_path.empty())
+      biovision_common::writeJsonFile(json_path, nlohmann::ordered_json{{"tool", "build_gesture_templates"},
+                                                                        {"command", options.command()},
+                                                                        {"set", set},
+                                                                        {"templates_per_label", per_label},
+                                                                        {"rejection_templates", rejection},
+                                                                        {"codes", recognizer.templates().codeCount()},
+                                                                        {"out", out}});
+  }
+  catch (const std::exception& e)
+  {
+    std::cerr << "build_gesture_templates: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

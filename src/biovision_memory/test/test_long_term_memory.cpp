@@ -27,7 +27,7 @@ ViewScan freeScan(float free_to = 3.0f)
 }
 
 // The same with `n` obstacle points at (x, y) in base_link.
-ViewScan scanWithPoints(double x, double y, int n = 5)
+ViewScan scanWithPoints(double x, double y, int n = 25)
 {
   ViewScan scan = freeScan();
   for (int i = 0; i < n; ++i)
@@ -135,8 +135,8 @@ TEST(LongTermMemoryReinforcement, ThePoseTranslatesAndRotatesObstaclesIntoTheMap
 
 TEST(LongTermMemoryReinforcement, FewPointsAreNotAnObstacle)
 {
-  LongTermMemory ltm;  // min_points 3
-  ltm.update(scanWithPoints(2.05, 0.05, 2), Pose2D{}, 0);
+  LongTermMemory ltm;  // min_points 20
+  ltm.update(scanWithPoints(2.05, 0.05, 19), Pose2D{}, 0);
   EXPECT_TRUE(ltm.cells().empty());
 }
 

@@ -11,11 +11,13 @@ namespace biovision_memory
 /// Parameters of the landmark pose correction (beyond the thesis, whose pose is raw odometry).
 struct LandmarkCorrectorParameters
 {
-  int window = 40;            ///< landmark sightings kept for the fit, [1, 10000]
-  double window_time = 60.0;  ///< sightings older than this are dropped [s], (0, 1e6]: odometry drifts
-  double gain = 0.3;          ///< fraction of the fitted correction applied per sighting, (0, 1]
-  double min_spread = 1.0;    ///< the heading is fitted only when the sightings span this [m], (0, 100]
-  double max_jump = 1.5;      ///< a sighting implying a correction larger than this is an outlier [m], (0, 100]
+  int window = 40;  ///< landmark sightings kept for the fit, [1, 10000]
+  double window_time =
+      20.0;           ///< sightings older than this are dropped [s], (0, 1e6]: odometry drifts (tuned: memory_eval)
+  double gain = 0.6;  ///< fraction of the fitted correction applied per sighting, (0, 1] (tuned: memory_eval)
+  double min_spread =
+      0.3;  ///< the heading is fitted only when the sightings lie this far from their centroid [m], (0, 100]
+  double max_jump = 1.5;  ///< a sighting implying a correction larger than this is an outlier [m], (0, 100]
 
   /// Throws std::invalid_argument naming the offending field and its range.
   void validate() const;

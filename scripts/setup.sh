@@ -34,6 +34,8 @@ PACKAGES=(
   libcli11-dev nlohmann-json3-dev zlib1g-dev
   # biovision_memory: the memory database (and the sqlite3 shell to inspect it)
   libsqlite3-dev sqlite3
+  # bumblebee2_driver: IEEE-1394 capture (pkg-config finds it)
+  libdc1394-dev pkg-config
   # tests and benchmarks
   googletest libgtest-dev libbenchmark-dev valgrind
 )

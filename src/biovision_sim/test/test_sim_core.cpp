@@ -13,6 +13,7 @@
 #include "biovision_sim/differential_drive.hpp"
 #include "biovision_sim/floor_plan.hpp"
 #include "biovision_sim/kinematic_chain.hpp"
+#include "biovision_sim/room_world_generator.hpp"
 #include "biovision_sim/scene_renderer.hpp"
 #include "biovision_sim/servo.hpp"
 #include "biovision_sim/simulator_parameters.hpp"
@@ -287,6 +288,48 @@ TEST(FloorPlan, RasterMarksTheFootprintCells)
   // The disc covers about pi r^2 = 0.785 m^2 = 78.5 cells, grown by half a cell all round.
   const cv::Mat1b disc = grid(cv::Rect(30, 0, 20, 20));
   EXPECT_NEAR(cv::countNonZero(disc), M_PI * 0.55 * 0.55 / 0.01, 8);
+}
+
+TEST(RoomWorldGenerator, RoomsAreSeededWithStartAndGoalApartAndClear)
+{
+  const RoomWorldGenerator generator;
+  for (unsigned seed = 1; seed <= 20; ++seed)
+  {
+    const RoomWorldGenerator::Room room = generator.generate(seed);
+    const FloorPlan plan(room.world);
+    EXPECT_GE(std::hypot(room.goal_x - room.start_x, room.goal_y - room.start_y), 4.0) << "seed " << seed;
+    EXPECT_GE(plan.clearance(room.goal_x, room.goal_y), generator.options().free_radius) << "seed " << seed;
+    EXPECT_GE(plan.clearance(room.start_x, room.start_y), generator.options().free_radius) << "seed " << seed;
+    EXPECT_GE(plan.footprints().size(), 4u + generator.options().min_clutter / 2) << "walls and some clutter";
+    // Inside the room.
+    EXPECT_GT(room.goal_x, 0);
+    EXPECT_LT(room.goal_x, room.width);
+    EXPECT_LT(std::abs(room.goal_y), room.depth / 2);
+  }
+  const RoomWorldGenerator::Room a = generator.generate(7), b = generator.generate(7), c = generator.generate(8);
+  ASSERT_EQ(a.world.objects().size(), b.world.objects().size());
+  for (size_t i = 0; i < a.world.objects().size(); ++i)
+    EXPECT_EQ(a.world.objects()[i].position, b.world.objects()[i].position) << "the same seed, the same world";
+  EXPECT_EQ(a.goal_x, b.goal_x);
+  EXPECT_NE(a.goal_x, c.goal_x) << "another seed, another world";
+}
+
+TEST(RoomWorldGenerator, BadOptionsThrowNamingTheField)
+{
+  RoomWorldGenerator::Options o;
+  o.min_start_goal = 20.0;
+  EXPECT_THROW(RoomWorldGenerator{o}, std::invalid_argument);
+  o = RoomWorldGenerator::Options();
+  o.min_clutter = 9;
+  try
+  {
+    RoomWorldGenerator g(o);
+    ADD_FAILURE() << "min_clutter > max_clutter accepted";
+  }
+  catch (const std::invalid_argument& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("min_clutter"), std::string::npos) << e.what();
+  }
 }
 
 TEST(KinematicChain, ComposesOriginsAndJoints)

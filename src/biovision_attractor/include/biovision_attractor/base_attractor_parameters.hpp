@@ -1,0 +1,59 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace biovision_attractor
+{
+/// Constants of the base's attractor dynamics (thesis §5.4, read as in the package README and
+/// /work/shared/notes §2: the printed equations' sign, exponent and units fixed, the repeller model of
+/// Bicho et al. 1998 that the thesis follows, and the forward-speed dynamics the thesis leaves out).
+/// Every field is a parameter of the base_controller node (config/base_controller.yaml,
+/// cfg/BaseController.cfg) under its own name. Units: metres, radians, seconds.
+struct BaseAttractorParameters
+{
+  // Heading dynamics: dphi/dt = alpha_goal sin(psi_goal - phi) + sum_i f_i (gain 1 as in the thesis, L1310).
+  double alpha_goal = 1.0;      ///< alpha_a [1/s]: goal attraction (thesis: 1)
+  double alpha_obstacle = 8.0;  ///< alpha_r [1/s] (beta_1 of Bicho): repeller strength at contact; thesis 25 was
+                                ///< on unknown disparity units (tuned on the tuning seeds, docs/benchmarks.md)
+  double decay_distance = 0.5;  ///< beta_2 [m]: strength lambda_i = alpha_r exp(-clearance_i / beta_2)
+  double robot_radius = 0.26;   ///< R [m]: Pioneer 3DX footprint; widens each repeller (sigma_i, Bicho)
+  double max_range = 2.5;  ///< [m] sectors with no obstacle nearer than this do not repel (free space pushes nothing)
+  double min_confidence = 0.1;   ///< sectors of lower STM confidence do not repel; above it lambda scales with it
+  double symmetry_angle = 0.25;  ///< [rad] the dead-ahead sector's repeller sits this far to the side the robot
+                                 ///< turns to (printed model: zero torque for an obstacle at 0 deg)
+  // Forward speed (not in the thesis).
+  double max_linear = 0.5;        ///< [m/s] forward speed limit (issue 16; the Pioneer 3DX can 1.2)
+  double max_angular = 1.7453;    ///< [rad/s] turn-rate limit: 100 deg/s (p2os max_yawspeed)
+  double linear_accel = 0.3;      ///< [m/s^2] Pioneer 3DX default 300 mm/s^2, both ways
+  double angular_accel = 1.7453;  ///< [rad/s^2] 100 deg/s^2 (Pioneer 3DX default), both ways
+  double safety_distance = 0.15;  ///< [m] clearance ahead at which the robot stops (and only turns)
+  double slow_distance = 1.0;     ///< [m] clearance ahead below which it slows down linearly
+  double corridor_margin = 0.1;   ///< [m] the swept corridor is robot_radius + this to either side
+  double turn_slowdown = 2.0;     ///< [rad/s] the speed falls linearly to 0 as the commanded turn rate reaches this
+  double blind_turn_rate = 0.3;   ///< [rad/s] a faster turn towards front sectors the STM does not know turns in place
+  double heading_stop_angle = 1.6;  ///< [rad] the speed falls linearly to 0 when the goal is this far off the heading
+  double goal_tolerance = 0.2;      ///< [m] reached: closer than this to the goal (then stops)
+  // Trap detection (not in the thesis).
+  double trap_time = 12.0;     ///< [s] no progress (goal distance not down by trap_progress) this long: trapped
+  double trap_progress = 0.3;  ///< [m]
+  double escape_time = 6.0;    ///< [s] a trapped robot heads a quarter turn towards the freer side this long
+
+  /// Throws std::invalid_argument naming the offending field and its range (namedDoubles' ranges, then
+  /// slow_distance > safety_distance).
+  void validate() const;
+
+  /// A parameter by name with the range validate() accepts for it alone (inclusive; > 0 is written as the
+  /// smallest positive double). cfg/BaseController.cfg repeats these; test_base_controller_config checks.
+  struct Named
+  {
+    const char* name;
+    double BaseAttractorParameters::*field;
+    double lower, upper;
+  };
+  static const std::vector<Named>& namedDoubles();
+
+  static constexpr int kSectors = 9;                          ///< STM sectors (thesis L1298)
+  static constexpr double kSectorWidth = 0.3490658503988659;  ///< [rad] 20 deg
+};
+}  // namespace biovision_attractor

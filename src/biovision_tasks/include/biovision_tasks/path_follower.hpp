@@ -1,0 +1,39 @@
+#pragma once
+
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "biovision_tasks/percept.hpp"
+#include "biovision_tasks/task_parameters.hpp"
+
+namespace biovision_tasks
+{
+/// Hands the base controller one waypoint at a time on the way to a goal: plans over the long-term memory
+/// (GridPlanner, inflated by robot_radius + inflation_margin), replans every replan_period (the LTM
+/// changes as the robot drives) or when asked (the base got trapped), drops the waypoints passed
+/// (waypoint_tolerance) once the next one is in straight free sight over the map (so no corner is cut). With no map or no path it heads straight for the goal and leaves the obstacles
+/// to the base's attractor dynamics. Used by the excursions (GoToTask) and the exploration (SearchTask).
+class PathFollower
+{
+public:
+  explicit PathFollower(const TaskParameters& parameters);
+
+  /// A new goal [m, map]; `plan` false: straight, never over the map (micro-task "forward").
+  void setGoal(const cv::Point2d& goal, bool plan = true);
+  /// Replans at the next waypoint() call.
+  void replanSoon() { planned_at_ = -1e18; }
+  /// The waypoint to drive to now [m, map].
+  cv::Point2d waypoint(const Percept& percept);
+  const std::vector<cv::Point2d>& waypoints() const { return waypoints_; }
+  const cv::Point2d& goal() const { return goal_; }
+
+private:
+  TaskParameters parameters_;
+  cv::Point2d goal_;
+  bool plan_ = true;
+  std::vector<cv::Point2d> waypoints_;
+  cv::Mat1b blocked_;  ///< the inflated obstacles of the last plan (empty: no map)
+  double planned_at_ = -1e18;
+};
+}  // namespace biovision_tasks

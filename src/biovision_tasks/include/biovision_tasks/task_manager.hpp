@@ -1,0 +1,86 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "biovision_tasks/mission_record.hpp"
+#include "biovision_tasks/motor_command.hpp"
+#include "biovision_tasks/percept.hpp"
+#include "biovision_tasks/task.hpp"
+#include "biovision_tasks/task_parameters.hpp"
+#include "biovision_tasks/task_spec.hpp"
+
+namespace biovision_tasks
+{
+/// The central agent of thesis §5.3.3 (L1273–1279): a task buffer of top-level tasks and the three block
+/// buffers. Every cycle (step()):
+///  1. the objective-detection buffer: detect() of every buffered task, also those waiting their turn;
+///  2. the conclusion-condition buffer: evaluate() of every started task (the active one and concurrent
+///     ones) — time-outs included; a finished task leaves all buffers, and its failure policy applies
+///     (on_failure: continue, abort the rest, or run a fallback task instead of the rest);
+///  3. the visuomotor buffer: only its head — the highest priority, then the oldest — acts; it is started
+///     when it first gets there, in the same cycle, so the robot never idles between tasks.
+/// With no task, or no localisation, the command stops the base. ROS-free; not thread-safe (one caller).
+class TaskManager
+{
+public:
+  struct Status
+  {
+    std::string macro_task, micro_task, mode, message;
+    int step = 0, steps = 0;
+    TaskState state = TaskState::Pending;  ///< Pending = idle (no task ever ran)
+  };
+  struct Finished
+  {
+    int id;
+    std::string name;
+    TaskState state;
+    std::string reason;
+    double start, end;  ///< [s]
+  };
+
+  explicit TaskManager(const TaskParameters& parameters = TaskParameters());
+
+  /// Builds a task from its spec (validate()d; throws std::invalid_argument) and buffers it; returns its id.
+  int add(const TaskSpec& spec);
+  /// Builds without buffering (for tests and composite tasks). Throws std::invalid_argument.
+  std::unique_ptr<Task> build(const TaskSpec& spec) const;
+  /// One cycle; percept.time must not decrease (call reset() when the clock jumps back).
+  MotorCommand step(const Percept& percept);
+  /// Cancels one buffered task (false when there is none with this id) or all of them.
+  bool cancel(int id, const std::string& reason);
+  void cancelAll(const std::string& reason);
+  /// Forgets everything: buffered tasks (cancelled), the mission record (home, found objects), history.
+  void reset();
+
+  bool idle() const { return buffer_.empty(); }
+  Status status() const;
+  /// Finished top-level tasks in the order they finished.
+  const std::vector<Finished>& finished() const { return finished_; }
+  const MissionRecord& record() const { return *record_; }
+  /// The task now driving the robot, nullptr when idle.
+  const Task* activeTask() const;
+
+private:
+  struct Entry
+  {
+    int id;
+    std::unique_ptr<Task> task;
+    TaskSpec spec;
+    long order;
+  };
+  void finish(size_t index, double time);
+  void sortVisuomotor();
+
+  TaskParameters parameters_;
+  std::shared_ptr<MissionRecord> record_;
+  std::vector<Entry> buffer_;  ///< the task buffer; its order is the visuomotor buffer's
+  std::vector<Finished> finished_;
+  int next_id_ = 1;
+  long next_order_ = 0;
+  bool have_last_pose_ = false;
+  Percept::Pose last_pose_;
+  double last_time_ = 0;
+};
+}  // namespace biovision_tasks

@@ -1,0 +1,139 @@
+#include "biovision_tasks/go_to_task.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace biovision_tasks
+{
+GoToTask::GoToTask(std::string name, Goal goal, std::shared_ptr<MissionRecord> record, TaskParameters parameters,
+                   double timeout)
+  : Task(std::move(name), timeout),
+    goal_(std::move(goal)),
+    record_(std::move(record)),
+    parameters_(parameters),
+    path_(parameters)
+{
+}
+
+bool GoToTask::resolve(const Percept& percept, std::string& why)
+{
+  tolerance_ = parameters_.goal_tolerance;
+  switch (goal_.target)
+  {
+    case Target::Place:
+      position_ = {goal_.x, goal_.y};
+      return true;
+    case Target::Home:
+      if (!record_->home_known)
+      {
+        why = "home is not known (no localised pose since the mission began)";
+        return false;
+      }
+      position_ = {record_->home.x, record_->home.y};
+      return true;
+    case Target::Forward:
+      if (!percept.pose_valid)
+      {
+        why = "no localisation";
+        return false;
+      }
+      position_ = {percept.pose.x + goal_.distance * std::cos(percept.pose.yaw),
+                   percept.pose.y + goal_.distance * std::sin(percept.pose.yaw)};
+      return true;
+    case Target::Object:
+    {
+      tolerance_ = parameters_.approach_distance;
+      const auto f = record_->found.find(goal_.label);
+      if (f != record_->found.end())
+      {
+        position_ = {f->second.x, f->second.y};
+        return true;
+      }
+      const Percept::Object* best = nullptr;
+      for (const auto& o : percept.remembered)
+        if (o.label == goal_.label && (!best || o.confidence > best->confidence))
+          best = &o;
+      if (best)
+      {
+        position_ = {best->x, best->y};
+        return true;
+      }
+      why = "object '" + goal_.label + "' was neither found in this mission nor is it in memory";
+      return false;
+    }
+  }
+  return false;
+}
+
+void GoToTask::onStart(const Percept& percept)
+{
+  std::string why;
+  resolved_ = resolve(percept, why);
+  stuck_since_ = -1;
+  if (resolved_)
+    path_.setGoal(aimPoint(percept), goal_.target != Target::Forward);
+}
+
+cv::Point2d GoToTask::aimPoint(const Percept& percept) const
+{
+  const cv::Point2d away(percept.pose.x - position_.x, percept.pose.y - position_.y);
+  const double n = std::hypot(away.x, away.y);
+  if (goal_.target != Target::Object || n < 1e-6)
+    return position_;
+  return position_ + away * (parameters_.approach_distance * 0.8 / n);
+}
+
+void GoToTask::onDetect(const Percept& percept)
+{
+  if (state() != TaskState::Running || !resolved_ || !percept.pose_valid)
+    return;
+  in_reach_ = std::hypot(percept.pose.x - position_.x, percept.pose.y - position_.y) <= tolerance_;
+}
+
+TaskState GoToTask::onConclude(const Percept& percept)
+{
+  if (!resolved_)
+  {
+    std::string why;
+    resolved_ = resolve(percept, why);
+    if (!resolved_)
+      return fail(why);
+    path_.setGoal(aimPoint(percept), goal_.target != Target::Forward);
+  }
+  if (in_reach_)
+    return TaskState::Succeeded;
+  const bool stuck = !percept.pose_valid || percept.base_trapped || percept.base_fault;
+  if (!stuck)
+    stuck_since_ = -1;
+  else if (stuck_since_ < 0)
+    stuck_since_ = percept.time;
+  else if (percept.time - stuck_since_ > parameters_.trapped_timeout)
+  {
+    std::ostringstream why;
+    if (!percept.pose_valid)
+      why << "no localisation for " << parameters_.trapped_timeout << " s";
+    else
+      why << "the base is " << (percept.base_fault ? "stopped by a fault" : "trapped") << " for "
+          << parameters_.trapped_timeout << " s";
+    return fail(why.str());
+  }
+  return TaskState::Running;
+}
+
+void GoToTask::onAct(const Percept& percept, MotorCommand& command)
+{
+  command.head_mode = "look_ahead";
+  command.mode = mode();
+  if (!resolved_ || !percept.pose_valid)
+  {
+    command.base = MotorCommand::Base::Stop;
+    return;
+  }
+  if (percept.base_trapped && stuck_since_ == percept.time)  // trapped just now: a fresh plan
+    path_.setGoal(aimPoint(percept), goal_.target != Target::Forward);
+  const cv::Point2d w = path_.waypoint(percept);
+  command.base = MotorCommand::Base::Goal;
+  command.goal_x = w.x;
+  command.goal_y = w.y;
+}
+}  // namespace biovision_tasks

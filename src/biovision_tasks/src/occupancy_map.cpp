@@ -1,0 +1,39 @@
+#include "biovision_tasks/occupancy_map.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <opencv2/imgproc.hpp>
+
+namespace biovision_tasks
+{
+OccupancyMap::OccupancyMap(cv::Mat1b cells, double origin_x, double origin_y, double cell)
+  : cells_(std::move(cells)), origin_x_(origin_x), origin_y_(origin_y), cell_(cell)
+{
+  if (!(cell > 0) || !std::isfinite(cell) || !std::isfinite(origin_x) || !std::isfinite(origin_y))
+    throw std::invalid_argument("OccupancyMap: cell size must be > 0 and the origin finite");
+}
+
+bool OccupancyMap::cellOf(double x, double y, int& row, int& col) const
+{
+  if (cells_.empty() || !std::isfinite(x) || !std::isfinite(y))
+    return false;
+  col = static_cast<int>(std::floor((x - origin_x_) / cell_));
+  row = static_cast<int>(std::floor((y - origin_y_) / cell_));
+  return row >= 0 && col >= 0 && row < cells_.rows && col < cells_.cols;
+}
+
+cv::Point2d OccupancyMap::centreOf(int row, int col) const
+{
+  return {origin_x_ + (col + 0.5) * cell_, origin_y_ + (row + 0.5) * cell_};
+}
+
+cv::Mat1b OccupancyMap::inflatedObstacles(int threshold, double radius) const
+{
+  cv::Mat1b blocked = (cells_ >= threshold) & (cells_ != kUnknown);
+  const int r = static_cast<int>(std::ceil(radius / cell_));
+  if (r > 0 && !blocked.empty())
+    cv::dilate(blocked, blocked, cv::getStructuringElement(cv::MORPH_ELLIPSE, {2 * r + 1, 2 * r + 1}));
+  return blocked;
+}
+}  // namespace biovision_tasks

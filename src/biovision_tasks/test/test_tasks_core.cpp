@@ -1,0 +1,414 @@
+// Unit tests of the ROS-free task manager (thesis §5.3.3): block buffers, recursion, time-outs, failure
+// policies, the grid planner, mission parsing, and the simple macro-tasks on a kinematic point robot.
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "biovision_tasks/go_to_task.hpp"
+#include "biovision_tasks/grid_planner.hpp"
+#include "biovision_tasks/macro_task.hpp"
+#include "biovision_tasks/search_task.hpp"
+#include "biovision_tasks/task_manager.hpp"
+#include "biovision_tasks/task_spec.hpp"
+
+using namespace biovision_tasks;
+
+namespace
+{
+// Counts its blocks' calls; succeeds when `done` is set, fails when `broken` is set.
+class ProbeTask : public Task
+{
+public:
+  explicit ProbeTask(std::string name, double timeout = 0) : Task(std::move(name), timeout) {}
+  int started = 0, detected = 0, concluded = 0, acted = 0;
+  bool done = false, broken = false;
+
+protected:
+  void onStart(const Percept&) override { ++started; }
+  void onDetect(const Percept&) override { ++detected; }
+  TaskState onConclude(const Percept&) override
+  {
+    ++concluded;
+    return broken ? fail("broken") : done ? TaskState::Succeeded : TaskState::Running;
+  }
+  void onAct(const Percept&, MotorCommand& c) override
+  {
+    ++acted;
+    c.base = MotorCommand::Base::Heading;
+    c.head_mode = name();
+  }
+};
+
+Percept at(double t, double x = 0, double y = 0, double yaw = 0)
+{
+  Percept p;
+  p.time = t;
+  p.pose = {x, y, yaw};
+  p.pose_valid = true;
+  return p;
+}
+
+TaskSpec spec(const std::string& text)
+{
+  return TaskSpec::parseText(text).at(0);
+}
+
+// A 10 m x 10 m map (origin -5, -5; 0.1 m cells) with a wall along x = 1 from y = -3 to y = 3.
+OccupancyMap wallMap()
+{
+  cv::Mat1b cells(100, 100, uchar(0));
+  for (int r = 20; r < 80; ++r)
+    for (int c = 60; c < 62; ++c)
+      cells(r, c) = 100;
+  return OccupancyMap(cells, -5, -5, 0.1);
+}
+}  // namespace
+
+TEST(MacroTask, StepsRunInOrderAndTheLastSuccessIsTheMacroTasks)
+{
+  MacroTask m("m", 0);
+  auto a = std::make_unique<ProbeTask>("a");
+  auto b = std::make_unique<ProbeTask>("b");
+  ProbeTask *pa = a.get(), *pb = b.get();
+  m.addStep(std::move(a));
+  m.addStep(std::move(b));
+  m.start(at(0));
+  EXPECT_EQ(m.microTask(), "a");
+  MotorCommand c;
+  m.act(at(0), c);
+  EXPECT_EQ(c.head_mode, "a");
+  EXPECT_EQ(pb->started, 0);
+  pa->done = true;
+  EXPECT_EQ(m.evaluate(at(1)), TaskState::Running);  // a succeeded: b starts in the same cycle
+  EXPECT_EQ(pb->started, 1);
+  EXPECT_EQ(m.microTask(), "b");
+  EXPECT_EQ(m.step(), 1);
+  pb->done = true;
+  EXPECT_EQ(m.evaluate(at(2)), TaskState::Succeeded);
+}
+
+TEST(MacroTask, RecursionAndFailurePropagationNameTheStep)
+{
+  auto inner = std::make_unique<MacroTask>("inner", 0);
+  auto x = std::make_unique<ProbeTask>("x");
+  ProbeTask* px = x.get();
+  inner->addStep(std::move(x));
+  MacroTask outer("outer", 0);
+  auto first = std::make_unique<ProbeTask>("first");
+  first->done = true;
+  outer.addStep(std::move(first));
+  outer.addStep(std::move(inner));
+  outer.start(at(0));
+  EXPECT_EQ(outer.evaluate(at(0)), TaskState::Running);
+  EXPECT_EQ(outer.microTask(), "x");  // the micro-task two levels down
+  px->broken = true;
+  EXPECT_EQ(outer.evaluate(at(1)), TaskState::Failed);
+  EXPECT_EQ(outer.reason(), "step 2/2 (inner): step 1/1 (x): broken");
+}
+
+TEST(MacroTask, AnOptionalStepsFailureDoesNotFailTheSequence)
+{
+  MacroTask m("m", 0);
+  auto a = std::make_unique<ProbeTask>("a");
+  a->broken = true;
+  auto b = std::make_unique<ProbeTask>("b");
+  b->done = true;
+  m.addStep(std::move(a), true);
+  m.addStep(std::move(b));
+  m.start(at(0));
+  EXPECT_EQ(m.evaluate(at(0)), TaskState::Succeeded);
+}
+
+TEST(Task, TimeOutFailsWithAReasonAndCancelsTheRunningStep)
+{
+  MacroTask m("m", 5.0);
+  auto a = std::make_unique<ProbeTask>("a");
+  ProbeTask* pa = a.get();
+  m.addStep(std::move(a));
+  m.start(at(10));
+  EXPECT_EQ(m.evaluate(at(14.9)), TaskState::Running);
+  EXPECT_EQ(m.evaluate(at(15.1)), TaskState::Failed);
+  EXPECT_EQ(m.reason(), "time-out after 5 s");
+  EXPECT_EQ(pa->state(), TaskState::Cancelled);
+  MotorCommand c;
+  m.act(at(16), c);  // a finished task does not act
+  EXPECT_EQ(pa->acted, 0);
+}
+
+TEST(TaskManager, OnlyTheHeadOfTheVisuomotorBufferActsWhileEveryDetectionRuns)
+{
+  TaskManager manager;
+  // Three sequential waits: only the first is started and acts; all three detect.
+  manager.add(spec("look_ahead duration=1"));
+  manager.add(spec("look_around duration=1"));
+  manager.add(spec("wait duration=1"));
+  MotorCommand c = manager.step(at(0));
+  EXPECT_EQ(c.head_mode, "look_ahead");
+  EXPECT_EQ(manager.status().macro_task, "look_ahead");
+  c = manager.step(at(1.0));  // the first is done: the second takes over in the same cycle
+  EXPECT_EQ(c.head_mode, "explore");
+  ASSERT_EQ(manager.finished().size(), 1u);
+  EXPECT_EQ(manager.finished()[0].state, TaskState::Succeeded);
+  manager.step(at(2.0));
+  manager.step(at(3.0));
+  EXPECT_TRUE(manager.idle());
+  EXPECT_EQ(manager.finished().size(), 3u);
+  EXPECT_EQ(manager.step(at(4)).base, MotorCommand::Base::Stop);  // idle: the base stops
+}
+
+TEST(TaskManager, DetectionOfWaitingTasksCountsWhenTheirTurnComes)
+{
+  TaskManager manager;
+  manager.add(spec("wait duration=10"));
+  manager.add(spec("search cup"));
+  Percept p = at(0);
+  p.seen.push_back({"cup", 2.0, 1.0, 0.9, 0.0});
+  manager.step(p);  // the search is not active yet, but its detection sees the cup
+  EXPECT_EQ(manager.status().macro_task, "wait");
+  manager.step(at(10.5));  // the wait ends; the search starts and concludes at once
+  EXPECT_TRUE(manager.idle());
+  ASSERT_EQ(manager.finished().size(), 2u);
+  EXPECT_EQ(manager.finished()[1].name, "search cup");
+  EXPECT_EQ(manager.finished()[1].state, TaskState::Succeeded);
+  EXPECT_DOUBLE_EQ(manager.record().found.at("cup").x, 2.0);
+}
+
+TEST(TaskManager, HigherPriorityTakesTheVisuomotorCycleAndConcurrentConclusionsRun)
+{
+  TaskManager manager;
+  manager.add(spec("look_around duration=100"));
+  EXPECT_EQ(manager.step(at(0)).head_mode, "explore");
+  manager.add(spec("look_ahead duration=2 priority=5"));
+  EXPECT_EQ(manager.step(at(1)).head_mode, "look_ahead");
+  EXPECT_EQ(manager.step(at(3.5)).head_mode, "explore");  // back to the preempted task
+  // A concurrent task concludes while another drives.
+  manager.add(spec("wait duration=1 concurrent=true priority=-1"));
+  manager.step(at(4));
+  manager.step(at(5.5));
+  ASSERT_EQ(manager.finished().size(), 2u);
+  EXPECT_EQ(manager.finished()[1].name, "wait");
+  EXPECT_EQ(manager.status().macro_task, "look_around");
+}
+
+TEST(TaskManager, FailurePoliciesContinueAbortOrFallBack)
+{
+  {  // abort: the rest is cancelled
+    TaskManager m;
+    m.add(spec("search ghost timeout=5 on_failure=abort"));
+    m.add(spec("wait duration=1"));
+    m.step(at(0));
+    m.step(at(6));
+    EXPECT_TRUE(m.idle());
+    ASSERT_EQ(m.finished().size(), 2u);
+    EXPECT_EQ(m.finished()[0].reason, "object 'ghost' never found in 5 s");
+    EXPECT_EQ(m.finished()[1].state, TaskState::Cancelled);
+  }
+  {  // fallback: return home replaces the rest
+    TaskManager m;
+    m.add(spec("search ghost timeout=5 on_failure=return_home"));
+    m.add(spec("wait duration=100"));
+    m.step(at(0, 0, 0));
+    m.step(at(6, 3, 0));
+    EXPECT_EQ(m.status().macro_task, "return_home");
+    const MotorCommand c = m.step(at(6.1, 3, 0));
+    EXPECT_EQ(c.base, MotorCommand::Base::Goal);
+    EXPECT_NEAR(c.goal_x, 0.0, 1e-9);  // home is the first localised pose
+    m.step(at(7, 0.1, 0));
+    EXPECT_TRUE(m.idle());
+    EXPECT_EQ(m.finished().back().state, TaskState::Succeeded);
+  }
+}
+
+TEST(TaskManager, NoLocalisationStopsTheBaseAndCancelEndsATask)
+{
+  TaskManager m;
+  const int id = m.add(spec("go_to x=3 y=0"));
+  Percept lost = at(0);
+  lost.pose_valid = false;
+  EXPECT_EQ(m.step(lost).base, MotorCommand::Base::Stop);
+  EXPECT_TRUE(m.cancel(id, "user"));
+  EXPECT_FALSE(m.cancel(id, "user"));
+  EXPECT_EQ(m.finished().back().state, TaskState::Cancelled);
+  EXPECT_EQ(m.status().message, "user");
+}
+
+TEST(GoToTask, UnknownObjectFailsNamingItAndATrappedBaseFailsAfterTheTimeout)
+{
+  TaskManager m;
+  m.add(spec("go_to teapot"));
+  m.step(at(0));
+  EXPECT_EQ(m.finished().back().reason, "object 'teapot' was neither found in this mission nor is it in memory");
+  TaskParameters p;
+  p.trapped_timeout = 5;
+  TaskManager m2(p);
+  m2.add(spec("go_to x=5 y=0"));
+  Percept trapped = at(0);
+  trapped.base_trapped = true;
+  for (double t = 0; t <= 6; t += 0.5)
+  {
+    trapped.time = t;
+    m2.step(trapped);
+  }
+  ASSERT_FALSE(m2.finished().empty());
+  EXPECT_EQ(m2.finished().back().state, TaskState::Failed);
+  EXPECT_NE(m2.finished().back().reason.find("trapped"), std::string::npos);
+}
+
+TEST(GridPlanner, GoesAroundAWallAndKeepsClearOfIt)
+{
+  const OccupancyMap map = wallMap();
+  GridPlanner::Options o;
+  const auto path = GridPlanner::plan(map, {-2, 0}, {3, 0}, o);
+  ASSERT_FALSE(path.empty());
+  EXPECT_NEAR(path.back().x, 3, 1e-9);
+  // Every straight leg stays clear of the wall cells (x 1.0..1.2, y -3..3) by the inflation radius.
+  cv::Point2d from(-2, 0);
+  for (const auto& to : path)
+  {
+    for (double s = 0; s <= 1; s += 0.01)
+    {
+      const cv::Point2d q = from + (to - from) * s;
+      const double dx = std::max({1.0 - q.x, 0.0, q.x - 1.2}), dy = std::max({-3.0 - q.y, 0.0, q.y - 3.0});
+      EXPECT_GE(std::hypot(dx, dy), o.radius - 0.1) << q;
+    }
+    from = to;
+  }
+}
+
+TEST(GridPlanner, NoPathWhenEnclosedOrTheGoalIsBlockedAndEscapesAFromAStartInTheInflation)
+{
+  cv::Mat1b cells(50, 50, uchar(0));
+  cv::rectangle(cells, cv::Rect(20, 20, 10, 10), 100, 1);  // a closed box around (2.5, 2.5)
+  const OccupancyMap boxed(cells, 0, 0, 0.1);
+  GridPlanner::Options o;
+  o.radius = 0.05;
+  EXPECT_TRUE(GridPlanner::plan(boxed, {0.5, 0.5}, {2.5, 2.5}, o).empty());
+  EXPECT_TRUE(GridPlanner::plan(boxed, {0.5, 0.5}, {2.05, 2.5}, o).empty());  // on the wall
+  EXPECT_TRUE(GridPlanner::plan(boxed, {0.5, 0.5}, {9.0, 0.5}, o).empty());   // outside the map
+  o.radius = 0.4;
+  EXPECT_FALSE(GridPlanner::plan(boxed, {1.85, 1.0}, {0.5, 4.5}, o).empty());  // starts 0.15 m from the box
+  // Unknown cells are free.
+  cv::Mat1b unknown(50, 50, OccupancyMap::kUnknown);
+  EXPECT_FALSE(GridPlanner::plan(OccupancyMap(unknown, 0, 0, 0.1), {0.5, 0.5}, {4.5, 4.5}, o).empty());
+}
+
+TEST(TaskSpec, ParsesMissionsAndRefusesBadOnesNamingTheProblem)
+{
+  const auto tasks = TaskSpec::parseYaml(
+      "mission: find_and_return\n"
+      "tasks:\n"
+      "  - {task: search, object: target_box, timeout: 240, on_failure: continue}\n"
+      "  - type: sequence\n"
+      "    steps:\n"
+      "      - {type: turn, angle: 3.14}\n"
+      "      - {type: return_home}\n");
+  ASSERT_EQ(tasks.size(), 2u);
+  EXPECT_EQ(tasks[0].object, "target_box");
+  EXPECT_EQ(tasks[0].timeout, 240);
+  EXPECT_EQ(tasks[1].steps.size(), 2u);
+  EXPECT_EQ(tasks[1].steps[1].type, "return_home");
+
+  auto error = [](const std::string& yaml) {
+    try
+    {
+      TaskSpec::parseYaml(yaml, "m.yaml");
+    }
+    catch (const std::invalid_argument& e)
+    {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(error("tasks:\n  - {type: fly}\n").substr(0, 9), "m.yaml:2:");
+  EXPECT_NE(error("tasks:\n  - {type: fly}\n").find("unknown task type 'fly'"), std::string::npos);
+  EXPECT_NE(error("tasks:\n  - {type: search}\n").find("search needs an object"), std::string::npos);
+  EXPECT_NE(error("tasks:\n  - {type: wait, speed: 3}\n").find("unknown key 'speed'"), std::string::npos);
+  EXPECT_NE(error("tasks:\n  - {type: wait, duration: fast}\n").find("'duration'"), std::string::npos);
+  EXPECT_NE(error("tasks:\n  - {type: go_to, x: .nan, y: 0}\n").find("non-finite"), std::string::npos);
+  EXPECT_NE(error("tasks: []\n").find("non-empty"), std::string::npos);
+
+  const auto line = TaskSpec::parseText("search cup timeout=60 on_failure=return_home; go_to x=1.5 y=-2; stop");
+  ASSERT_EQ(line.size(), 3u);
+  EXPECT_EQ(line[0].on_failure, "return_home");
+  EXPECT_TRUE(line[1].has_place);
+  EXPECT_DOUBLE_EQ(line[1].y, -2);
+  EXPECT_THROW(TaskSpec::parseText("search cup mug"), std::invalid_argument);
+  EXPECT_THROW(TaskSpec::parseText(" ; "), std::invalid_argument);
+}
+
+TEST(SearchTask, GoesFirstWhereTheMemoryRemembersTheObject)
+{
+  TaskManager m;
+  m.add(spec("search cup"));
+  Percept p = at(0);
+  p.remembered.push_back({"cup", 4.0, 0.0, 0.9, -100});
+  const MotorCommand c = m.step(p);
+  EXPECT_EQ(c.mode, "excursion");
+  EXPECT_EQ(c.base, MotorCommand::Base::Goal);
+  EXPECT_NEAR(c.goal_x, 4.0, 1e-9);
+  EXPECT_EQ(c.head_mode, "explore");
+  Percept weak = at(0);
+  weak.remembered.push_back({"cup", 4.0, 0.0, 0.1, -100});  // too weak a memory: explore
+  TaskManager m2;
+  m2.add(spec("search cup"));
+  EXPECT_EQ(m2.step(weak).mode, "exploration");
+}
+
+// The thesis' mission on a kinematic point robot that drives to each Goal at 0.5 m/s: search an object
+// behind a wall (seen within 2 m), then return home; exploration must find it, the return must plan
+// around the wall the map holds.
+TEST(TaskManager, FindAndReturnOnAPointRobot)
+{
+  TaskManager m;
+  for (const auto& t : TaskSpec::parseText("search box timeout=600; return_home timeout=300"))
+    m.add(t);
+  const OccupancyMap map = wallMap();
+  const cv::Point2d box(3.0, 0.5);
+  double x = 0, y = 0, yaw = 0;
+  bool returned = false;
+  double blocked_since = -1;
+  for (double t = 0; t < 900 && !returned; t += 0.2)
+  {
+    Percept p = at(t, x, y, yaw);
+    p.map = map;
+    p.base_trapped = blocked_since >= 0 && t - blocked_since > 3.0;  // the base controller's trap detector
+    if (std::hypot(box.x - x, box.y - y) < 2.0)
+      p.seen.push_back({"box", box.x, box.y, 0.9, t});
+    const MotorCommand c = m.step(p);
+    if (c.base == MotorCommand::Base::Goal)
+    {
+      const double dx = c.goal_x - x, dy = c.goal_y - y, d = std::hypot(dx, dy);
+      const double s = std::min(d, 0.1);
+      // The point robot refuses to enter the wall (the base's STM would stop it).
+      const double nx = x + (d > 0 ? dx / d * s : 0), ny = y + (d > 0 ? dy / d * s : 0);
+      if (!(nx > 0.8 && nx < 1.4 && std::abs(ny) < 3.2))
+      {
+        x = nx;
+        y = ny;
+        blocked_since = -1;
+      }
+      else if (blocked_since < 0)
+        blocked_since = t;
+      yaw = std::atan2(dy, dx);
+    }
+    else if (c.base == MotorCommand::Base::Heading)
+      yaw = c.heading;
+    returned = m.idle();
+  }
+  ASSERT_TRUE(returned);
+  ASSERT_EQ(m.finished().size(), 2u);
+  EXPECT_EQ(m.finished()[0].state, TaskState::Succeeded) << m.finished()[0].reason;
+  EXPECT_EQ(m.finished()[1].state, TaskState::Succeeded) << m.finished()[1].reason;
+  EXPECT_LT(std::hypot(x, y), 0.3);
+  EXPECT_NEAR(m.record().found.at("box").x, 3.0, 1e-9);
+}
+
+int main(int argc, char** argv)
+{
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}

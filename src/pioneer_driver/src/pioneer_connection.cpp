@@ -1,0 +1,214 @@
+#include "pioneer_driver/pioneer_connection.hpp"
+
+#include <chrono>
+#include <stdexcept>
+#include <thread>
+
+namespace pioneer_driver
+{
+namespace
+{
+double steadyNow()
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+}  // namespace
+
+PioneerConnection::PioneerConnection(const PioneerParameters& parameters) : p_(parameters)
+{
+  p_.validate();
+}
+
+PioneerConnection::~PioneerConnection()
+{
+  if (status_.connected)
+  {
+    try
+    {
+      port_.write(arcosCommand(kVel, 0));
+      port_.write(arcosCommand(kRvel, 0));
+      port_.write(arcosCommand(kClose));
+    }
+    catch (const std::exception&)
+    {
+    }
+  }
+}
+
+void PioneerConnection::setMotionLimits(const PioneerParameters& parameters)
+{
+  PioneerParameters next = p_;
+  next.max_linear_speed = parameters.max_linear_speed;
+  next.max_angular_speed = parameters.max_angular_speed;
+  next.cmd_vel_timeout = parameters.cmd_vel_timeout;
+  next.validate();
+  p_ = next;
+}
+
+void PioneerConnection::setCommand(double linear_m_s, double angular_rad_s, double now)
+{
+  command_v_ = linear_m_s;
+  command_w_ = angular_rad_s;
+  command_time_ = now;
+}
+
+std::vector<uint8_t> PioneerConnection::awaitPacket(double timeout)
+{
+  const double end = steadyNow() + timeout;
+  while (true)
+  {
+    const double left = end - steadyNow();
+    if (left <= 0.0)
+      return {};
+    const auto bytes = port_.read(256, left);
+    auto packets = parser_.feed(bytes);
+    if (!packets.empty())
+      return packets.front();  // the handshake is strictly request/answer
+  }
+}
+
+void PioneerConnection::connect(double now)
+{
+  port_.open(p_.port, p_.baud);
+  parser_ = ArcosPacketParser();
+  bool synced = false;
+  for (int attempt = 0; attempt < 3 && !synced; ++attempt)
+  {
+    port_.write(arcosCommand(kSync0));
+    const auto reply = awaitPacket(p_.sync_timeout);
+    if (!reply.empty() && reply.size() == 1 && reply[0] == kSync0)
+      synced = true;
+    else if (!reply.empty())
+    {
+      // A session is still open (SIPs or other traffic): close it and start over.
+      port_.write(arcosCommand(kClose));
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      port_.flushInput();
+      parser_ = ArcosPacketParser();
+    }
+  }
+  if (!synced)
+    throw std::runtime_error("no SYNC0 echo from " + p_.port + " at " + std::to_string(p_.baud) +
+                             " bit/s (robot off, wrong port or baud?)");
+  port_.write(arcosCommand(kSync1));
+  auto reply = awaitPacket(p_.sync_timeout);
+  if (reply.empty() || reply[0] != kSync1)
+    throw std::runtime_error("no SYNC1 echo from " + p_.port);
+  port_.write(arcosCommand(kSync2));
+  reply = awaitPacket(p_.sync_timeout);
+  if (reply.empty() || reply[0] != kSync2)
+    throw std::runtime_error("no SYNC2 reply from " + p_.port);
+  const auto names = syncReplyStrings(reply);
+  status_.robot_name = names.size() > 0 ? names[0] : "";
+  status_.robot_class = names.size() > 1 ? names[1] : "";
+  status_.robot_subclass = names.size() > 2 ? names[2] : "";
+  port_.write(arcosCommand(kOpen));
+  port_.write(arcosCommand(kPulse));
+  if (p_.enable_motors)
+    port_.write(arcosCommand(kEnable, 1));
+  port_.write(arcosCommand(kVel, 0));
+  port_.write(arcosCommand(kRvel, 0));
+  status_.commanded = ArcosVelocity{};
+  status_.connected = true;
+  status_.connects++;
+  rejected_base_ = parser_.rejected();
+  last_sip_ = now;  // grace until the first SIP
+  last_tx_ = now;
+}
+
+void PioneerConnection::send(const std::vector<uint8_t>& packet, double now)
+{
+  port_.write(packet);
+  last_tx_ = now;
+}
+
+void PioneerConnection::lose(const std::string& why, double now)
+{
+  if (status_.connected)
+    status_.losses++;
+  status_.connected = false;
+  status_.last_error = why;
+  status_.commanded = ArcosVelocity{};
+  port_.close();
+  next_attempt_ = now + p_.reconnect_period;
+}
+
+void PioneerConnection::disconnect(const std::string& why, double now)
+{
+  if (status_.connected)
+  {
+    try
+    {
+      port_.write(arcosCommand(kVel, 0));
+      port_.write(arcosCommand(kRvel, 0));
+      port_.write(arcosCommand(kClose));
+    }
+    catch (const std::exception&)
+    {
+    }
+  }
+  lose(why, now);
+}
+
+std::vector<StandardSip> PioneerConnection::spinOnce(double now, double read_timeout)
+{
+  std::vector<StandardSip> sips;
+  if (!status_.connected)
+  {
+    if (now < next_attempt_)
+    {
+      std::this_thread::sleep_for(std::chrono::duration<double>(read_timeout));
+      return sips;
+    }
+    try
+    {
+      connect(now);
+    }
+    catch (const std::exception& e)
+    {
+      lose(std::string("connect: ") + e.what(), now);
+      return sips;
+    }
+  }
+  try
+  {
+    const auto bytes = port_.read(512, read_timeout);
+    for (const auto& data : parser_.feed(bytes))
+    {
+      if (!isStandardSip(data))
+        continue;  // configuration, encoder or other SIPs: not used
+      try
+      {
+        sips.push_back(parseStandardSip(data));
+        status_.sips++;
+        last_sip_ = now;
+      }
+      catch (const std::invalid_argument&)
+      {
+        status_.rejected_packets++;
+      }
+    }
+    status_.rejected_packets += parser_.rejected() - rejected_base_;
+    rejected_base_ = parser_.rejected();
+
+    const bool fresh = now - command_time_ <= p_.cmd_vel_timeout;
+    status_.watchdog_stopped = !fresh;
+    const ArcosVelocity target = fresh ? toArcosVelocity(command_v_, command_w_, p_) : ArcosVelocity{};
+    if (target != status_.commanded)
+    {
+      send(arcosCommand(kVel, target.vel_mm_s), now);
+      send(arcosCommand(kRvel, target.rvel_deg_s), now);
+      status_.commanded = target;
+    }
+    else if (now - last_tx_ >= p_.pulse_period)
+      send(arcosCommand(kPulse), now);
+    if (now - last_sip_ > p_.sip_timeout)
+      throw std::runtime_error("no valid SIP for " + std::to_string(now - last_sip_) + " s");
+  }
+  catch (const std::exception& e)
+  {
+    lose(e.what(), now);
+  }
+  return sips;
+}
+}  // namespace pioneer_driver

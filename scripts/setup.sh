@@ -32,6 +32,8 @@ PACKAGES=(
   libopencv-dev libopencv-contrib-dev libeigen3-dev liblinear-dev libyaml-cpp-dev
   # biovision_common: tool options, JSON, CRC
   libcli11-dev nlohmann-json3-dev zlib1g-dev
+  # biovision_memory: the memory database (and the sqlite3 shell to inspect it)
+  libsqlite3-dev sqlite3
   # bumblebee2_driver: IEEE-1394 capture (pkg-config finds it)
   libdc1394-dev pkg-config
   # tests and benchmarks

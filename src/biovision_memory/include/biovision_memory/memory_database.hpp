@@ -1,0 +1,89 @@
+#pragma once
+
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "biovision_memory/long_term_memory.hpp"
+#include "biovision_memory/object_memory.hpp"
+
+struct sqlite3;
+
+namespace biovision_memory
+{
+/// A database that cannot be used: in use by another process, corrupt, of a newer schema, written with
+/// another cell size, or a failed write (disk full, I/O error). what() names the file and the reason.
+class DatabaseError : public std::runtime_error
+{
+public:
+  using std::runtime_error::runtime_error;
+};
+
+/// The long-term map and the object/landmark memory in one SQLite database (Debian's libsqlite3), as
+/// rtabmap keeps its long-term memory:
+///  - WAL journal, synchronous=FULL: every committed transaction survives a kill -9 or a power cut;
+///  - schema version in `PRAGMA user_version` (kSchemaVersion); a newer one is refused;
+///  - `PRAGMA integrity_check` on open; a corrupt file is refused;
+///  - one writer: an exclusive flock() on `<path>.lock` (released by the kernel when the process dies,
+///    so a killed node never leaves a stale lock); a second process opening the same database is refused;
+///  - changes are written incrementally (save()) in one transaction each.
+/// Tables (inspect with `sqlite3 memory.db`): `ltm_cells(ix, iy, x, y, strength, observations,
+/// first_seen, last_seen, last_change)`, `objects(label, x, y, z, strength, observations, first_seen,
+/// last_seen, last_change)`, `meta(key, value)` (cell_size). Times are ROS time [s]; positions `map` [m].
+class MemoryDatabase
+{
+public:
+  static constexpr int kSchemaVersion = 1;
+
+  struct Options
+  {
+    double cell_size = 0.1;  ///< the LTM's cell size [m]; a database written with another is refused
+    /// Refused (corrupt, newer schema, other cell size): false → throw; true → move the file aside to
+    /// `<path>.bad-<unix time>` and start with an empty memory (movedAside() names it). Never applies to
+    /// "in use by another process".
+    bool start_empty_on_bad = false;
+    /// Upper bound of the file size in pages (PRAGMA max_page_count, 0 = SQLite's default), to keep the
+    /// memory from filling a disk; a write beyond it fails like a full disk.
+    long max_pages = 0;
+  };
+
+  /// Opens or creates `path`. Throws DatabaseError (see Options::start_empty_on_bad).
+  MemoryDatabase(const std::string& path, const Options& options);
+  ~MemoryDatabase();
+  MemoryDatabase(const MemoryDatabase&) = delete;
+  MemoryDatabase& operator=(const MemoryDatabase&) = delete;
+
+  std::vector<LongTermMemory::Cell> loadCells() const;
+  std::vector<ObjectMemory::Object> loadObjects() const;
+
+  /// Writes the changes in one transaction. On failure (disk full, I/O error) throws DatabaseError and
+  /// keeps them: the next save() writes them together with its own (later changes win), so nothing is
+  /// lost while the process runs. The database keeps its last committed state.
+  void save(const LongTermMemory::Changes& cells, const ObjectMemory::Changes& objects);
+  /// Changes waiting for a successful save() (after a failed one).
+  size_t pending() const { return pending_cells_.size() + pending_objects_.size(); }
+
+  const std::string& path() const { return path_; }
+  /// The file a bad database was moved to on open, or "".
+  const std::string& movedAside() const { return moved_aside_; }
+
+private:
+  void open();
+  void close();
+  void check();  // throws DatabaseError on corruption, newer schema, other cell size
+  void createSchema();
+  void exec(const std::string& sql) const;
+  std::string fail(const std::string& what) const;
+
+  std::string path_;
+  Options options_;
+  int lock_fd_ = -1;
+  sqlite3* db_ = nullptr;
+  std::string moved_aside_;
+  std::map<std::pair<int, int>, std::optional<LongTermMemory::Cell>> pending_cells_;
+  std::map<std::string, std::optional<ObjectMemory::Object>> pending_objects_;
+};
+}  // namespace biovision_memory

@@ -1,0 +1,86 @@
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "biovision_memory/reinforcement_rules.hpp"
+
+namespace biovision_memory
+{
+/// Parameters of the object/landmark memory (thesis §5.3: "part of LTM"; how an object is placed is a gap).
+struct ObjectMemoryParameters
+{
+  ReinforcementRules rules;  ///< the LTM's rules, applied per object
+  /// A sighting within this of the remembered position is "the same place" [m], (0, 10]: recognition's
+  /// stereo position scatters ≈ 0.1–0.2 m at 2–3 m.
+  double match_distance = 0.5;
+  /// The remembered position is the running mean of the last this-many sightings' weight [1, 1000];
+  /// fixed objects (landmarks, at M_R) no longer move, they correct the robot's pose instead.
+  int averaging_window = 10;
+
+  /// Throws std::invalid_argument naming the offending field and its range.
+  void validate() const;
+};
+
+/// Where each recognised object was seen (map frame), when, how often, and how strongly it is
+/// remembered (ReinforcementRules per object, one entry per label). A sighting at the same place
+/// reinforces and refines the position; a sighting elsewhere weakens the old memory (N_R), and once that
+/// reaches 0 the object is remembered at the new place. An object at M_R is a landmark: its position is
+/// fixed. Not thread-safe.
+class ObjectMemory
+{
+public:
+  struct Object
+  {
+    std::string label;
+    Eigen::Vector3d position{0.0, 0.0, 0.0};  ///< map frame [m]
+    int strength = 0;
+    std::uint32_t observations = 0;
+    double first_seen = 0.0, last_seen = 0.0, last_change = 0.0;  ///< [s]
+  };
+  /// The result of one sighting.
+  struct Sighting
+  {
+    bool landmark = false;                      ///< the object was a fixed landmark before this sighting
+    Eigen::Vector3d remembered{0.0, 0.0, 0.0};  ///< its remembered position before the sighting
+    bool relocated = false;                     ///< the memory moved to the new position
+  };
+
+  explicit ObjectMemory(const ObjectMemoryParameters& parameters = {});
+  void setParameters(const ObjectMemoryParameters& parameters);
+  const ObjectMemoryParameters& parameters() const { return parameters_; }
+
+  /// `label` seen at `position` (map frame) at `stamp` [s]. Applies rule (c) to it first. Throws
+  /// std::invalid_argument on an empty label or a non-finite position.
+  Sighting observe(const std::string& label, const Eigen::Vector3d& position, double stamp);
+  /// Rule (c) for every object; returns the labels removed.
+  std::vector<std::string> forget(double stamp);
+  /// Removes one object; false when unknown.
+  bool remove(const std::string& label);
+  const Object* find(const std::string& label) const;
+  const std::map<std::string, Object>& objects() const { return objects_; }
+  bool isLandmark(const Object& o) const { return parameters_.rules.fixed(o.strength); }
+  /// Confidence of a memory in [0, 1]: strength / M_R.
+  double confidence(const Object& o) const { return static_cast<double>(o.strength) / parameters_.rules.max_strength; }
+
+  void clear();
+  void load(const std::vector<Object>& objects);
+  void rebaseTime(double now);
+  /// Labels written or removed since the last call (for MemoryDatabase).
+  struct Changes
+  {
+    std::vector<Object> upserted;
+    std::vector<std::string> removed;
+  };
+  Changes takeChanges();
+
+private:
+  ObjectMemoryParameters parameters_;
+  std::map<std::string, Object> objects_;
+  std::map<std::string, bool> dirty_;  ///< label → still present
+};
+}  // namespace biovision_memory

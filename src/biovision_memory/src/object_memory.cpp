@@ -1,0 +1,175 @@
+#include "biovision_memory/object_memory.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace biovision_memory
+{
+void ObjectMemoryParameters::validate() const
+{
+  rules.validate();
+  if (!(match_distance > 0.0 && match_distance <= 10.0))
+  {
+    std::ostringstream m;
+    m << "ObjectMemoryParameters.match_distance = " << match_distance << " is outside (0, 10]";
+    throw std::invalid_argument(m.str());
+  }
+  if (averaging_window < 1 || averaging_window > 1000)
+  {
+    std::ostringstream m;
+    m << "ObjectMemoryParameters.averaging_window = " << averaging_window << " is outside [1, 1000]";
+    throw std::invalid_argument(m.str());
+  }
+}
+
+ObjectMemory::ObjectMemory(const ObjectMemoryParameters& parameters) : parameters_(parameters)
+{
+  parameters_.validate();
+}
+
+void ObjectMemory::setParameters(const ObjectMemoryParameters& parameters)
+{
+  parameters.validate();
+  parameters_ = parameters;
+}
+
+ObjectMemory::Sighting ObjectMemory::observe(const std::string& label, const Eigen::Vector3d& position, double stamp)
+{
+  if (label.empty())
+    throw std::invalid_argument("ObjectMemory::observe: empty label");
+  if (!position.allFinite() || !std::isfinite(stamp))
+    throw std::invalid_argument("ObjectMemory::observe: non-finite position or stamp for '" + label + "'");
+  const ReinforcementRules& r = parameters_.rules;
+  Sighting sighting;
+  auto it = objects_.find(label);
+  if (it != objects_.end())
+  {
+    Object& o = it->second;
+    o.strength = r.decay(o.strength, o.last_change, stamp);
+    if (o.strength <= 0)
+    {
+      objects_.erase(it);
+      it = objects_.end();
+    }
+  }
+  dirty_[label] = true;
+  if (it == objects_.end())
+  {
+    Object o;
+    o.label = label;
+    o.position = position;
+    o.strength = r.initial_strength;
+    o.observations = 1;
+    o.first_seen = o.last_seen = o.last_change = stamp;
+    objects_.emplace(label, o);
+    sighting.remembered = position;
+    return sighting;
+  }
+  Object& o = it->second;
+  sighting.landmark = r.fixed(o.strength);
+  sighting.remembered = o.position;
+  if ((position - o.position).norm() <= parameters_.match_distance)
+  {
+    if (!sighting.landmark)
+    {
+      const double w = 1.0 / std::min<double>(o.observations + 1, parameters_.averaging_window);
+      o.position = (1.0 - w) * o.position + w * position;
+    }
+    o.strength = r.reinforce(o.strength);
+    ++o.observations;
+    o.last_seen = o.last_change = stamp;
+    return sighting;
+  }
+  // Seen elsewhere: the old place is contradicted.
+  o.strength = r.weaken(o.strength);
+  o.last_change = stamp;
+  if (o.strength <= 0)
+  {
+    o.position = position;
+    o.strength = r.initial_strength;
+    o.observations = 1;
+    o.first_seen = o.last_seen = stamp;
+    sighting.relocated = true;
+  }
+  return sighting;
+}
+
+std::vector<std::string> ObjectMemory::forget(double stamp)
+{
+  std::vector<std::string> removed;
+  for (auto it = objects_.begin(); it != objects_.end();)
+  {
+    const double before = it->second.last_change;
+    it->second.strength = parameters_.rules.decay(it->second.strength, it->second.last_change, stamp);
+    if (it->second.strength <= 0)
+    {
+      removed.push_back(it->first);
+      dirty_[it->first] = false;
+      it = objects_.erase(it);
+      continue;
+    }
+    if (it->second.last_change != before)
+      dirty_[it->first] = true;
+    ++it;
+  }
+  return removed;
+}
+
+bool ObjectMemory::remove(const std::string& label)
+{
+  if (objects_.erase(label) == 0)
+    return false;
+  dirty_[label] = false;
+  return true;
+}
+
+const ObjectMemory::Object* ObjectMemory::find(const std::string& label) const
+{
+  const auto it = objects_.find(label);
+  return it == objects_.end() ? nullptr : &it->second;
+}
+
+void ObjectMemory::clear()
+{
+  for (const auto& [label, o] : objects_)
+    dirty_[label] = false;
+  objects_.clear();
+}
+
+void ObjectMemory::load(const std::vector<Object>& objects)
+{
+  for (const Object& o : objects)
+    objects_[o.label] = o;
+}
+
+void ObjectMemory::rebaseTime(double now)
+{
+  for (auto& [label, o] : objects_)
+  {
+    if (o.last_change > now || o.last_seen > now || o.first_seen > now)
+    {
+      o.last_change = std::min(o.last_change, now);
+      o.last_seen = std::min(o.last_seen, now);
+      o.first_seen = std::min(o.first_seen, now);
+      dirty_[label] = true;
+    }
+  }
+}
+
+ObjectMemory::Changes ObjectMemory::takeChanges()
+{
+  Changes changes;
+  for (const auto& [label, present] : dirty_)
+  {
+    const auto it = objects_.find(label);
+    if (present && it != objects_.end())
+      changes.upserted.push_back(it->second);
+    else if (it == objects_.end())
+      changes.removed.push_back(label);
+  }
+  dirty_.clear();
+  return changes;
+}
+}  // namespace biovision_memory

@@ -1,0 +1,257 @@
+#include <cmath>
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+
+#include "biovision_memory/long_term_memory.hpp"
+#include "biovision_memory/object_memory.hpp"
+
+using namespace biovision_memory;
+
+namespace
+{
+// A scan that saw the floor free from 0.5 m to 3 m over ±0.5 rad and no obstacle.
+ViewScan freeScan(float free_to = 3.0f)
+{
+  ViewScan scan;
+  scan.max_range = 3.0;
+  scan.bearing_min = -0.5;
+  scan.bin_width = 0.01;
+  scan.bins.resize(100);
+  for (auto& b : scan.bins)
+  {
+    b.free_from = 0.5f;
+    b.free_to = free_to;
+  }
+  return scan;
+}
+
+// The same with `n` obstacle points at (x, y) in base_link.
+ViewScan scanWithPoints(double x, double y, int n = 25)
+{
+  ViewScan scan = freeScan();
+  for (int i = 0; i < n; ++i)
+    scan.obstacle_points.emplace_back(x, y, 0.5);
+  const int bin = scan.binOf(std::atan2(y, x));
+  if (bin >= 0)
+    scan.bins[bin].free_to = scan.bins[bin].obstacle_range = static_cast<float>(std::hypot(x, y));
+  return scan;
+}
+
+int strengthAt(const LongTermMemory& ltm, double x, double y)
+{
+  const auto* c = ltm.cellAt(x, y);
+  return c ? c->strength : 0;
+}
+}  // namespace
+
+TEST(ReinforcementRules, ThesisValuesAndChecks)
+{
+  ReinforcementRules r;
+  EXPECT_EQ(r.initial_strength, 40);
+  EXPECT_EQ(r.reinforcement, 40);
+  EXPECT_EQ(r.max_strength, 200);
+  EXPECT_EQ(r.penalty, -40);
+  EXPECT_DOUBLE_EQ(r.forget_period, 300.0);
+  EXPECT_EQ(r.reinforce(180), 200);
+  EXPECT_TRUE(r.fixed(200));
+  r.penalty = 5;
+  try
+  {
+    r.validate();
+    FAIL();
+  }
+  catch (const std::invalid_argument& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("penalty"), std::string::npos);
+  }
+}
+
+TEST(LongTermMemoryReinforcement, SeenAgainAddsPRUpToMRStepByStep)
+{
+  LongTermMemory ltm;
+  const int expected[] = {40, 80, 120, 160, 200, 200, 200};
+  for (int i = 0; i < 7; ++i)
+  {
+    const auto stats = ltm.update(scanWithPoints(2.05, 0.05), Pose2D{}, i);
+    EXPECT_EQ(strengthAt(ltm, 2.05, 0.05), expected[i]) << "sighting " << i + 1;
+    EXPECT_EQ(stats.added, i == 0 ? 1 : 0);
+    EXPECT_EQ(stats.weakened, 0);
+  }
+  EXPECT_EQ(ltm.cellAt(2.05, 0.05)->observations, 7u);
+  EXPECT_DOUBLE_EQ(ltm.cellAt(2.05, 0.05)->first_seen, 0.0);
+  EXPECT_DOUBLE_EQ(ltm.cellAt(2.05, 0.05)->last_seen, 6.0);
+  EXPECT_EQ(ltm.cells().size(), 1u);
+}
+
+TEST(LongTermMemoryReinforcement, ExpectedButNotSeenSubtractsNRAndRemovesAtZero)
+{
+  LongTermMemory ltm;
+  for (int i = 0; i < 3; ++i)
+    ltm.update(scanWithPoints(2.05, 0.05), Pose2D{}, i);  // 120
+  ASSERT_EQ(strengthAt(ltm, 2.05, 0.05), 120);
+  const int expected[] = {80, 40, 0};
+  for (int i = 0; i < 3; ++i)
+  {
+    const auto stats = ltm.update(freeScan(), Pose2D{}, 10 + i);
+    EXPECT_EQ(strengthAt(ltm, 2.05, 0.05), expected[i]) << "miss " << i + 1;
+    EXPECT_EQ(stats.weakened, 1);
+  }
+  EXPECT_TRUE(ltm.cells().empty());
+}
+
+TEST(LongTermMemoryReinforcement, OnlyCellsInViewAndInsideTheFreeRangeAreExpected)
+{
+  LongTermMemory ltm;
+  ltm.observe(2.05, 0.05, 0);  // in view, free range covers it
+  ltm.observe(2.85, 0.05, 0);  // in view, within free_margin of 3 m
+  ltm.observe(0.25, 0.05, 0);  // nearer than the first floor seen (0.5 m)
+  ltm.observe(0.05, 2.05, 0);  // outside the ±0.5 rad view
+  ltm.observe(3.55, 0.05, 0);  // beyond the scan's range
+  ASSERT_EQ(ltm.cells().size(), 5u);
+  ltm.update(freeScan(), Pose2D{}, 1);
+  EXPECT_EQ(strengthAt(ltm, 2.05, 0.05), 0);
+  EXPECT_EQ(strengthAt(ltm, 2.85, 0.05), 40);
+  EXPECT_EQ(strengthAt(ltm, 0.25, 0.05), 40);
+  EXPECT_EQ(strengthAt(ltm, 0.05, 2.05), 40);
+  EXPECT_EQ(strengthAt(ltm, 3.55, 0.05), 40);
+  // An obstacle nearer on the same bearing hides the cell: not expected.
+  ltm.update(scanWithPoints(2.05, 0.05), Pose2D{}, 2);  // new again: 40
+  ltm.update(scanWithPoints(1.55, 0.05 * 1.55 / 2.05), Pose2D{}, 3);
+  EXPECT_EQ(strengthAt(ltm, 2.05, 0.05), 40);
+  // Without it, the same scan geometry weakens it.
+  ltm.update(freeScan(), Pose2D{}, 4);
+  EXPECT_EQ(strengthAt(ltm, 2.05, 0.05), 0);
+}
+
+TEST(LongTermMemoryReinforcement, ThePoseTranslatesAndRotatesObstaclesIntoTheMap)
+{
+  LongTermMemory ltm;
+  const Pose2D pose{1.0, 2.0, M_PI / 2};
+  ltm.update(scanWithPoints(1.05, 0.0), pose, 0);  // 1.05 m ahead of a base facing +y
+  EXPECT_EQ(strengthAt(ltm, 1.0, 3.05), 40);
+  EXPECT_EQ(ltm.cells().size(), 1u);
+}
+
+TEST(LongTermMemoryReinforcement, FewPointsAreNotAnObstacle)
+{
+  LongTermMemory ltm;  // min_points 20
+  ltm.update(scanWithPoints(2.05, 0.05, 19), Pose2D{}, 0);
+  EXPECT_TRUE(ltm.cells().empty());
+}
+
+// Rule (c): every t_LTM = 300 s without a change, an item below M_R loses 40; at M_R it is fixed.
+TEST(LongTermMemoryForgetting, EveryForgetPeriodWeakensUnfixedItemsStepByStep)
+{
+  LongTermMemory ltm;
+  for (int i = 0; i < 5; ++i)
+    ltm.update(scanWithPoints(-2.05, 0.05), Pose2D{}, i);  // 200: fixed (behind: never in the ±0.5 rad view)
+  for (int i = 0; i < 3; ++i)
+    ltm.update(scanWithPoints(2.05, 0.05), Pose2D{}, i);  // 120, last change at t = 2
+  EXPECT_EQ(ltm.forget(301.9), 0);
+  EXPECT_EQ(strengthAt(ltm, 2.05, 0.05), 120);
+  ltm.forget(302.0);
+  EXPECT_EQ(strengthAt(ltm, 2.05, 0.05), 80);
+  ltm.forget(601.0);
+  EXPECT_EQ(strengthAt(ltm, 2.05, 0.05), 80);
+  ltm.forget(602.0);
+  EXPECT_EQ(strengthAt(ltm, 2.05, 0.05), 40);
+  EXPECT_EQ(ltm.forget(902.0), 1);
+  EXPECT_EQ(strengthAt(ltm, 2.05, 0.05), 0);
+  ltm.forget(1e5);
+  EXPECT_EQ(strengthAt(ltm, -2.05, 0.05), 200);
+}
+
+TEST(LongTermMemoryForgetting, AOneFramePhantomIsGoneAfterTheForgetPeriod)
+{
+  LongTermMemory ltm;
+  ltm.update(scanWithPoints(-2.05, 0.05), Pose2D{}, 10.0);  // out of later views
+  EXPECT_EQ(strengthAt(ltm, -2.05, 0.05), 40);
+  ltm.forget(309.9);
+  EXPECT_EQ(strengthAt(ltm, -2.05, 0.05), 40);
+  ltm.forget(310.0);
+  EXPECT_EQ(strengthAt(ltm, -2.05, 0.05), 0);
+  // Several periods at once count fully.
+  for (int i = 0; i < 4; ++i)
+    ltm.update(scanWithPoints(-2.05, 0.05), Pose2D{}, 400.0 + i);  // 160
+  ltm.forget(403.0 + 3 * 300.0);
+  EXPECT_EQ(strengthAt(ltm, -2.05, 0.05), 40);
+}
+
+TEST(LongTermMemoryChanges, TakeChangesReportsUpsertsAndRemovals)
+{
+  LongTermMemory ltm;
+  ltm.update(scanWithPoints(2.05, 0.05), Pose2D{}, 0);
+  auto changes = ltm.takeChanges();
+  ASSERT_EQ(changes.upserted.size(), 1u);
+  EXPECT_TRUE(changes.removed.empty());
+  EXPECT_TRUE(ltm.takeChanges().upserted.empty());
+  ltm.update(freeScan(), Pose2D{}, 1);
+  changes = ltm.takeChanges();
+  EXPECT_TRUE(changes.upserted.empty());
+  ASSERT_EQ(changes.removed.size(), 1u);
+  EXPECT_EQ(changes.removed[0], std::make_pair(20, 0));
+}
+
+TEST(ObjectMemory, ReinforcementAndLandmarkStepByStep)
+{
+  ObjectMemory om;
+  const int expected[] = {40, 80, 120, 160, 200};
+  for (int i = 0; i < 5; ++i)
+  {
+    const auto s = om.observe("cup", {1.0 + 0.02 * i, 0.0, 0.8}, i);
+    EXPECT_FALSE(s.landmark);
+    EXPECT_EQ(om.find("cup")->strength, expected[i]);
+  }
+  const auto* cup = om.find("cup");
+  EXPECT_TRUE(om.isLandmark(*cup));
+  EXPECT_DOUBLE_EQ(om.confidence(*cup), 1.0);
+  EXPECT_NEAR(cup->position.x(), 1.04, 0.011);  // mean of the sightings
+  const Eigen::Vector3d fixed = cup->position;
+  // A landmark does not move with later sightings.
+  const auto s = om.observe("cup", {1.3, 0.1, 0.8}, 6);
+  EXPECT_TRUE(s.landmark);
+  EXPECT_EQ(om.find("cup")->position, fixed);
+  EXPECT_EQ(om.find("cup")->observations, 6u);
+}
+
+TEST(ObjectMemory, SeenElsewhereWeakensThenRelocates)
+{
+  ObjectMemory om;
+  om.observe("box", {0, 0, 0}, 0);
+  om.observe("box", {0, 0, 0}, 1);  // 80
+  auto s = om.observe("box", {3, 0, 0}, 2);
+  EXPECT_FALSE(s.relocated);
+  EXPECT_EQ(om.find("box")->strength, 40);
+  EXPECT_EQ(om.find("box")->position.x(), 0.0);
+  s = om.observe("box", {3, 0, 0}, 3);
+  EXPECT_TRUE(s.relocated);
+  EXPECT_EQ(om.find("box")->strength, 40);
+  EXPECT_EQ(om.find("box")->position.x(), 3.0);
+}
+
+TEST(ObjectMemory, ForgettingListAndRemove)
+{
+  ObjectMemory om;
+  om.observe("a", {0, 0, 0}, 0);
+  om.observe("b", {1, 0, 0}, 0);
+  om.observe("b", {1, 0, 0}, 0);  // 80
+  EXPECT_TRUE(om.forget(299).empty());
+  const auto removed = om.forget(300);
+  ASSERT_EQ(removed.size(), 1u);
+  EXPECT_EQ(removed[0], "a");
+  EXPECT_EQ(om.find("b")->strength, 40);
+  EXPECT_TRUE(om.remove("b"));
+  EXPECT_FALSE(om.remove("b"));
+  EXPECT_TRUE(om.objects().empty());
+  const auto changes = om.takeChanges();
+  EXPECT_EQ(changes.removed.size(), 2u);
+  EXPECT_THROW(om.observe("", {0, 0, 0}, 1), std::invalid_argument);
+  EXPECT_THROW(om.observe("x", {NAN, 0, 0}, 1), std::invalid_argument);
+}
+
+int main(int argc, char** argv)
+{
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}

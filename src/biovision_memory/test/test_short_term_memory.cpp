@@ -1,0 +1,259 @@
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+
+#include "biovision_memory/short_term_memory.hpp"
+#include "synthetic_view.hpp"
+
+using biovision_memory::Pose2D;
+using biovision_memory::ShortTermMemory;
+using biovision_memory::ViewScan;
+using namespace biovision_memory_test;
+
+namespace
+{
+constexpr double kDeg = M_PI / 180.0;
+constexpr double kTilt = 15 * kDeg;
+
+// One strip that saw an obstacle at `point` (base_link), the others blind.
+ViewScan scanWithObstacle(const Eigen::Vector2d& point)
+{
+  ViewScan scan;
+  scan.max_range = 3.0;
+  ViewScan::Strip s;
+  s.centre_bearing = std::atan2(point.y(), point.x());
+  s.nearest_point = point;
+  s.nearest_range = static_cast<float>(point.norm());
+  s.observed = true;
+  scan.strips.push_back(s);
+  return scan;
+}
+}  // namespace
+
+TEST(ShortTermMemorySectors, TileMinus90To90In20DegreeSteps)
+{
+  ShortTermMemory stm;
+  EXPECT_EQ(stm.sectorOf(-89.9 * kDeg), 0);
+  EXPECT_EQ(stm.sectorOf(-70.1 * kDeg), 0);
+  EXPECT_EQ(stm.sectorOf(-69.9 * kDeg), 1);
+  EXPECT_EQ(stm.sectorOf(0.0), 4);
+  EXPECT_EQ(stm.sectorOf(9.9 * kDeg), 4);
+  EXPECT_EQ(stm.sectorOf(10.1 * kDeg), 5);
+  EXPECT_EQ(stm.sectorOf(89.9 * kDeg), 8);
+  EXPECT_EQ(stm.sectorOf(90.5 * kDeg), -1);
+  EXPECT_EQ(stm.sectorOf(-91 * kDeg), -1);
+  EXPECT_EQ(stm.sectorOf(M_PI), -1);
+  EXPECT_NEAR(stm.sectorCentre(0), -80 * kDeg, 1e-9);
+  EXPECT_NEAR(stm.sectorCentre(8), 80 * kDeg, 1e-9);
+}
+
+// A post 1.5 m away at bearing theta; the head panned to look at it from several pans. The post's sector
+// holds its distance, the other sectors the strips look into are free, the rest unknown.
+TEST(ShortTermMemorySectors, APostLandsInItsSectorAtSeveralPans)
+{
+  const auto cam = camera160();
+  for (double pan_deg : {-60.0, -35.0, 0.0, 25.0, 55.0})
+  {
+    for (double offset_deg : {-12.0, 0.0, 12.0})  // the post in the right, centre and left strip
+    {
+      const double pan = pan_deg * kDeg, theta = (pan_deg + offset_deg) * kDeg;
+      const double range = 1.5, radius = 0.1;
+      const Cylinder post{range * std::cos(theta), range * std::sin(theta), radius, 1.0};
+      ShortTermMemory stm;
+      const auto pose = cameraPose(pan, kTilt);
+      stm.update(renderDisparity(cam, pose, {post}), cam, pose, Pose2D{}, 1.0);
+      const auto sectors = stm.sectors();
+      const int expected = stm.sectorOf(theta);
+      SCOPED_TRACE("pan " + std::to_string(pan_deg) + " offset " + std::to_string(offset_deg));
+      ASSERT_GE(expected, 0);
+      EXPECT_TRUE(sectors[expected].obstacle);
+      EXPECT_NEAR(sectors[expected].distance, range - radius, 0.06);
+      EXPECT_DOUBLE_EQ(sectors[expected].confidence, 1.0);
+      int known = 0;
+      for (int i = 0; i < 9; ++i)
+      {
+        if (sectors[i].confidence > 0)
+          ++known;
+        if (i != expected)
+        {
+          EXPECT_FALSE(sectors[i].obstacle) << "sector " << i;
+        }
+        // A sector far from the view is untouched.
+        if (std::abs(stm.sectorCentre(i) - pan) > 40 * kDeg)
+        {
+          EXPECT_EQ(sectors[i].confidence, 0.0) << "sector " << i;
+        }
+      }
+      EXPECT_GE(known, 1);
+      EXPECT_LE(known, 3);
+    }
+  }
+}
+
+TEST(ShortTermMemorySectors, EmptyFloorIsFreeInTheViewedSectorsOnly)
+{
+  const auto cam = camera160();
+  ShortTermMemory stm;
+  const auto pose = cameraPose(40 * kDeg, kTilt);
+  stm.update(renderDisparity(cam, pose, {}), cam, pose, Pose2D{}, 0.5);
+  const auto sectors = stm.sectors();
+  // Strip centres at 40 and 40 ± 14.3 deg: sectors 5 (10..30), 6 (30..50) and 7 (50..70).
+  for (int i = 0; i < 9; ++i)
+  {
+    const bool viewed = i >= 5 && i <= 7;
+    EXPECT_EQ(sectors[i].confidence > 0, viewed) << i;
+    EXPECT_FALSE(sectors[i].obstacle) << i;
+    EXPECT_TRUE(std::isinf(sectors[i].distance)) << i;
+  }
+}
+
+TEST(ShortTermMemorySectors, ABlindOrNanViewChangesNothing)
+{
+  const auto cam = camera160();
+  ShortTermMemory stm;
+  const auto pose = cameraPose(0.0, kTilt);
+  cv::Mat nan(120, 160, CV_32F, cv::Scalar(std::numeric_limits<float>::quiet_NaN()));
+  stm.update(nan, cam, pose, Pose2D{}, 1.0);
+  for (const auto& s : stm.sectors())
+    EXPECT_EQ(s.confidence, 0.0);
+  EXPECT_EQ(stm.lastScan().valid_pixels, 0);
+  EXPECT_GT(stm.lastScan().invalid_pixels, 0);
+}
+
+TEST(ShortTermMemorySectors, BadInputThrowsAndKeepsTheMemory)
+{
+  ShortTermMemory stm;
+  stm.update(scanWithObstacle({1.0, 0.0}), Pose2D{}, 1.0);
+  const auto cam = camera160();
+  EXPECT_THROW(stm.update(cv::Mat(), cam, cameraPose(0, kTilt), Pose2D{}, 2.0), std::invalid_argument);
+  EXPECT_THROW(stm.update(cv::Mat(120, 160, CV_8U, cv::Scalar(0)), cam, cameraPose(0, kTilt), Pose2D{}, 2.0),
+               std::invalid_argument);
+  auto bad = cam;
+  bad.baseline = 0.0;
+  EXPECT_THROW(stm.update(cv::Mat(120, 160, CV_32F, cv::Scalar(5)), bad, cameraPose(0, kTilt), Pose2D{}, 2.0),
+               std::invalid_argument);
+  EXPECT_TRUE(stm.sectors()[4].obstacle);
+  EXPECT_NEAR(stm.sectors()[4].distance, 1.0, 1e-9);
+}
+
+// Odometry: the remembered obstacle is rotated and translated with the base, not re-indexed.
+TEST(ShortTermMemoryOdometry, RotationMovesAnObstacleToTheSectorOfItsNewBearing)
+{
+  ShortTermMemory stm;
+  stm.update(scanWithObstacle({1.0, 0.0}), Pose2D{0, 0, 0}, 0.0);
+  ASSERT_TRUE(stm.sectors()[4].obstacle);
+  // The base turns 35 deg left: the obstacle is now at -35 deg, sector 2 (-50..-30 deg).
+  stm.moveTo(Pose2D{0, 0, 35 * kDeg}, 0.1);
+  auto s = stm.sectors();
+  EXPECT_FALSE(s[4].obstacle);
+  EXPECT_TRUE(s[2].obstacle);
+  EXPECT_NEAR(s[2].distance, 1.0, 1e-9);
+  // Turning back right by 50 deg: +15 deg, sector 5.
+  stm.moveTo(Pose2D{0, 0, -15 * kDeg}, 0.2);
+  s = stm.sectors();
+  EXPECT_TRUE(s[5].obstacle);
+  EXPECT_NEAR(s[5].distance, 1.0, 1e-9);
+  // 100 deg to the left: the obstacle is at -115 deg, outside the field: dropped.
+  stm.moveTo(Pose2D{0, 0, 100 * kDeg}, 0.3);
+  for (const auto& sec : stm.sectors())
+    EXPECT_FALSE(sec.obstacle);
+}
+
+TEST(ShortTermMemoryOdometry, TranslationChangesDistanceAndBearing)
+{
+  ShortTermMemory stm;
+  stm.update(scanWithObstacle({2.0, 0.5}), Pose2D{1.0, 1.0, 0.0}, 0.0);  // 14 deg: sector 5
+  ASSERT_TRUE(stm.sectors()[5].obstacle);
+  // Forward 1.5 m: the obstacle at (0.5, 0.5) in the new base frame: 45 deg, sector 6, 0.707 m.
+  stm.moveTo(Pose2D{2.5, 1.0, 0.0}, 1.0);
+  auto s = stm.sectors();
+  EXPECT_FALSE(s[5].obstacle);
+  ASSERT_TRUE(s[6].obstacle);
+  EXPECT_NEAR(s[6].distance, std::hypot(0.5, 0.5), 1e-9);
+  EXPECT_NEAR(s[6].confidence, 1.0 - 1.5 / 2.0, 1e-9);  // travelled 1.5 of the 2 m horizon
+}
+
+TEST(ShortTermMemoryOdometry, RotateAndTranslateTogether)
+{
+  ShortTermMemory stm;
+  const Pose2D start{0.0, 0.0, 0.5};
+  // An obstacle at odom (2, 2): in the start base frame.
+  const Eigen::Vector2d odom_point(2.0, 2.0);
+  const Eigen::Vector2d in_base = start.inverse().apply(odom_point);
+  stm.update(scanWithObstacle(in_base), start, 0.0);
+  const Pose2D end{1.0, 0.5, 1.2};  // moved and turned
+  stm.moveTo(end, 0.5);
+  const Eigen::Vector2d expected = end.inverse().apply(odom_point);
+  const int sector = stm.sectorOf(std::atan2(expected.y(), expected.x()));
+  ASSERT_GE(sector, 0);
+  auto s = stm.sectors();
+  ASSERT_TRUE(s[sector].obstacle);
+  EXPECT_NEAR(s[sector].distance, expected.norm(), 1e-9);
+}
+
+TEST(ShortTermMemoryAgeing, FreeSpaceFadesFasterThanObstaclesAndNeverLooksFresh)
+{
+  const auto cam = camera160();
+  ShortTermMemory stm;  // free horizon 3 s, obstacle horizon 10 s
+  const auto pose = cameraPose(0.0, kTilt);
+  const Cylinder post{1.2 * std::cos(-16 * kDeg), 1.2 * std::sin(-16 * kDeg), 0.1, 1.0};
+  stm.update(renderDisparity(cam, pose, {post}), cam, pose, Pose2D{}, 0.0);
+  auto s = stm.sectors();
+  const int post_sector = stm.sectorOf(-16 * kDeg);  // 3
+  ASSERT_TRUE(s[post_sector].obstacle);
+  const int free_sector = stm.sectorOf(14.3 * kDeg);  // the left strip: 5
+  ASSERT_FALSE(s[free_sector].obstacle);
+  ASSERT_EQ(s[free_sector].confidence, 1.0);
+  stm.moveTo(Pose2D{}, 1.5);
+  s = stm.sectors();
+  EXPECT_NEAR(s[free_sector].confidence, 0.5, 1e-9);
+  EXPECT_NEAR(s[free_sector].age, 1.5, 1e-9);
+  EXPECT_NEAR(s[post_sector].confidence, 0.85, 1e-9);
+  stm.moveTo(Pose2D{}, 3.0);
+  s = stm.sectors();
+  EXPECT_EQ(s[free_sector].confidence, 0.0);  // unknown, not free
+  EXPECT_TRUE(s[post_sector].obstacle);
+  stm.moveTo(Pose2D{}, 10.0);
+  s = stm.sectors();
+  EXPECT_FALSE(s[post_sector].obstacle);
+  EXPECT_EQ(s[post_sector].confidence, 0.0);
+}
+
+TEST(ShortTermMemoryAgeing, TimeGoingBackwardsResets)
+{
+  ShortTermMemory stm;
+  stm.update(scanWithObstacle({1.0, 0.0}), Pose2D{}, 5.0);
+  ASSERT_TRUE(stm.sectors()[4].obstacle);
+  EXPECT_FALSE(stm.moveTo(Pose2D{}, 4.0));
+  for (const auto& s : stm.sectors())
+    EXPECT_EQ(s.confidence, 0.0);
+  EXPECT_TRUE(stm.moveTo(Pose2D{}, 4.5));
+}
+
+TEST(ShortTermMemoryParameters, RejectNamesTheField)
+{
+  biovision_memory::ShortTermMemoryParameters p;
+  p.scan.max_range = -1;
+  try
+  {
+    ShortTermMemory stm(p);
+    FAIL();
+  }
+  catch (const std::invalid_argument& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("max_range"), std::string::npos);
+  }
+  ShortTermMemory stm;
+  p = {};
+  p.free_horizon_time = 0;
+  EXPECT_THROW(stm.setParameters(p), std::invalid_argument);
+  EXPECT_DOUBLE_EQ(stm.parameters().free_horizon_time, 3.0);
+}
+
+int main(int argc, char** argv)
+{
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}

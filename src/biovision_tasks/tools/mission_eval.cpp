@@ -3,6 +3,7 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -37,10 +38,37 @@ int main(int argc, char** argv)
   options.app()
       .add_option("--new-obstacles", trial.new_obstacles, "obstacles put on the way home")
       ->check(CLI::NonNegativeNumber);
+  std::vector<std::string> settings;
+  options.app().add_option("--set", settings, "a task parameter NAME=VALUE (repeatable), e.g. home_range_cost=0.3");
   options.app().add_option("--json", json_path, "write the figures here");
   options.parse(argc, argv);
 
-  const TaskParameters tasks;
+  TaskParameters tasks;
+  for (const std::string& s : settings)
+  {
+    const auto eq = s.find('=');
+    bool known = false;
+    for (const auto& [name, field] : TaskParameters::namedDoubles())
+      if (eq != std::string::npos && s.substr(0, eq) == name)
+      {
+        tasks.*field = std::stod(s.substr(eq + 1));
+        known = true;
+      }
+    if (!known)
+    {
+      std::cerr << "mission_eval: --set " << s << ": not NAME=VALUE of a task parameter\n";
+      return 2;
+    }
+  }
+  try
+  {
+    tasks.validate();
+  }
+  catch (const std::invalid_argument& e)
+  {
+    std::cerr << "mission_eval: " << e.what() << "\n";
+    return 2;
+  }
   const biovision_attractor::BaseAttractorParameters base;
   const biovision_attractor::HeadAttractorParameters head;
   nlohmann::ordered_json document, per_trial = nlohmann::ordered_json::array();

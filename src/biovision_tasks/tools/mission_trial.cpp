@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <memory>
 #include <random>
 #include <sstream>
@@ -237,11 +235,6 @@ MissionTrialResult runMissionTrial(unsigned seed, const TaskParameters& tasks,
         const double distance = turn ? INFINITY : std::hypot(command.goal_x - pose.x, command.goal_y - pose.y);
         const BaseAttractor::Output out = base_controller.update(sectors, bearing, distance, t, control_dt);
         trapped = out.status == BaseAttractor::Status::kTrapped;
-        if (std::getenv("MISSION_TRACE") && step % 250 == 0)
-          std::fprintf(stderr, "t=%.0f pose (%.2f %.2f %.2f) %s/%s goal (%.2f %.2f) base %s v=%.2f w=%.2f front=%.2f\n", t,
-                       pose.x, pose.y, pose.yaw, manager.status().macro_task.c_str(), manager.status().micro_task.c_str(),
-                       command.goal_x, command.goal_y, BaseAttractor::name(out.status), out.linear, out.angular,
-                       out.front_clearance);
         drive.command(out.linear, out.angular);
       }
     }

@@ -83,9 +83,9 @@ private:
   long next_order_ = 0;
   bool have_last_pose_ = false;
   Percept::Pose last_pose_;
-  bool driving_ = false;           ///< the last command drove the base
-  Percept::Pose progress_pose_;    ///< where the robot was when it last made progress
-  double progress_time_ = 0;       ///< [s] and when
+  bool driving_ = false;         ///< the last command drove the base
+  Percept::Pose progress_pose_;  ///< where the robot was when it last made progress
+  double progress_time_ = 0;     ///< [s] and when
   double last_time_ = 0;
 };
 }  // namespace biovision_tasks

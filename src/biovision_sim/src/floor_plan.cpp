@@ -103,6 +103,29 @@ double FloorPlan::range(double x, double y, double bearing, double max_range) co
   return best <= max_range ? best : kInf;
 }
 
+std::vector<FloorPlan::Sighting> FloorPlan::visible(double x, double y, double heading, double half_fov,
+                                                    double max_range) const
+{
+  std::vector<Sighting> seen;
+  for (size_t i = 0; i < footprints_.size(); ++i)
+  {
+    const Footprint& f = footprints_[i];
+    const double d = std::hypot(f.x - x, f.y - y);
+    const double b = std::atan2(f.y - y, f.x - x);
+    if (d > max_range || std::abs(std::remainder(b - heading, 2 * M_PI)) > half_fov)
+      continue;
+    // Hidden when something else is met first: along the bearing, the first boundary is nearer than this
+    // footprint's own entry (which lies at most its half-diagonal before its centre).
+    const double entry = d - std::hypot(f.half_x, f.half_y);
+    bool hidden = false;
+    for (size_t j = 0; j < footprints_.size() && !hidden; ++j)
+      hidden = j != i && rayEntry(footprints_[j], x, y, std::cos(b), std::sin(b)) < std::max(0.0, entry);
+    if (!hidden)
+      seen.push_back({i, d, b});
+  }
+  return seen;
+}
+
 cv::Mat1b FloorPlan::rasterize(double origin_x, double origin_y, double cell, int rows, int cols) const
 {
   cv::Mat1b grid(std::max(rows, 0), std::max(cols, 0), uchar(0));

@@ -276,6 +276,39 @@ TEST(FloorPlan, RangeMeetsTheFirstBoundaryAlongTheBearing)
   EXPECT_NEAR(plan.range(2, 2, 3 * M_PI / 4, 10), std::hypot(1.5, 1.5), 1e-9);
 }
 
+TEST(FloorPlan, VisibleFootprintsAreInViewInRangeAndNotHidden)
+{
+  const FloorPlan plan(twoObstacles());  // bin at (3, 0), crate at (0, 4)
+  auto labels = [&](const std::vector<FloorPlan::Sighting>& s) {
+    std::string l;
+    for (const auto& v : s)
+      l += plan.footprints()[v.index].label + " ";
+    return l;
+  };
+  EXPECT_EQ(labels(plan.visible(0, 0, 0.0, 0.4, 10)), "bin ");
+  EXPECT_EQ(labels(plan.visible(0, 0, M_PI / 2, 0.4, 10)), "crate ");
+  EXPECT_EQ(labels(plan.visible(0, 0, M_PI / 4, M_PI / 2, 10)), "bin crate ");
+  EXPECT_EQ(labels(plan.visible(0, 0, 0.0, 0.4, 2.9)), "");  // the bin's centre is 3 m away
+  EXPECT_EQ(labels(plan.visible(6, 0, M_PI, 0.4, 10)), "bin ");
+  // From (3, 4) looking at the bin (3, 0) down -y, nothing hides it; from (-3, 4) along the line to the
+  // crate's far side the crate hides nothing behind it... put a viewer behind the crate: (0, 6) looking
+  // at (0, 0) sees the crate, and the bin (at 3, 0) is outside a narrow view.
+  const auto s = plan.visible(0, 6, -M_PI / 2, 0.1, 10);
+  ASSERT_EQ(s.size(), 1u);
+  EXPECT_NEAR(s[0].distance, 2.0, 1e-9);
+  EXPECT_NEAR(s[0].bearing, -M_PI / 2, 1e-9);
+  // Hidden: a viewer at (6, 0) with a second disc put between it and the bin.
+  World w = twoObstacles();
+  World::Object blocker;
+  blocker.label = "blocker";
+  blocker.shape = "cylinder";
+  blocker.position = Eigen::Vector3d(4.5, 0, 0.3);
+  blocker.size = Eigen::Vector3d(0.4, 0.4, 0.6);
+  w.addObject(blocker);
+  const FloorPlan hidden(w);
+  EXPECT_EQ(labels(hidden.visible(6, 0, M_PI, 0.4, 10)).find("bin"), std::string::npos);
+}
+
 TEST(FloorPlan, RasterMarksTheFootprintCells)
 {
   const FloorPlan plan(twoObstacles());

@@ -27,12 +27,15 @@ bool GridPlanner::lineOfSight(const OccupancyMap& map, const cv::Mat1b& blocked,
 {
   const double length = std::hypot(b.x - a.x, b.y - a.y);
   const int n = std::max(1, static_cast<int>(std::ceil(length / (map.cellSize() / 2))));
+  bool leaving = true;  // a start inside the inflation (the robot brushed a wall) may leave through it
   for (int i = 0; i <= n; ++i)
   {
     const cv::Point2d p = a + (b - a) * (static_cast<double>(i) / n);
     int r, c;
-    if (map.cellOf(p.x, p.y, r, c) && blocked(r, c))
+    const bool hit = map.cellOf(p.x, p.y, r, c) && blocked(r, c);
+    if (hit && !leaving)
       return false;
+    leaving = leaving && hit;
   }
   return true;
 }

@@ -121,8 +121,18 @@ void TaskManager::finish(size_t index, double time)
   }
 }
 
-MotorCommand TaskManager::step(const Percept& percept)
+MotorCommand TaskManager::step(const Percept& input)
 {
+  Percept percept = input;
+  // Progress monitor: moved stall_distance since the last progress, or not driving: progress now.
+  if (!driving_ || !percept.pose_valid ||
+      std::hypot(percept.pose.x - progress_pose_.x, percept.pose.y - progress_pose_.y) >= parameters_.stall_distance)
+  {
+    progress_pose_ = percept.pose;
+    progress_time_ = percept.time;
+  }
+  if (percept.time - progress_time_ > parameters_.stall_time)
+    percept.base_trapped = true;
   if (percept.pose_valid)
   {
     if (!record_->home_known)
@@ -172,6 +182,7 @@ MotorCommand TaskManager::step(const Percept& percept)
     buffer_.front().task->act(percept, command);
   if (!percept.pose_valid)
     command.base = MotorCommand::Base::Stop;
+  driving_ = command.base != MotorCommand::Base::Stop;
   return command;
 }
 
@@ -200,6 +211,7 @@ void TaskManager::reset()
   finished_.clear();
   *record_ = MissionRecord();
   have_last_pose_ = false;
+  driving_ = false;
 }
 
 TaskManager::Status TaskManager::status() const

@@ -33,6 +33,8 @@ void TaskParameters::validate() const
   check("visit_cell", visit_cell, 0.05, 5.0);
   check("home_range_cost", home_range_cost, 0.0, 100.0);
   check("trapped_timeout", trapped_timeout, 1.0, 3600.0);
+  check("stall_time", stall_time, 1.0, 3600.0);
+  check("stall_distance", stall_distance, 0.01, 10.0);
   check("min_memory_confidence", min_memory_confidence, 0.0, 1.0);
   check("search_timeout", search_timeout, 1.0, 36000.0);
   check("go_to_timeout", go_to_timeout, 1.0, 36000.0);
@@ -52,6 +54,8 @@ const std::vector<std::pair<std::string, double TaskParameters::*>>& TaskParamet
       {"visit_cell", &TaskParameters::visit_cell},
       {"home_range_cost", &TaskParameters::home_range_cost},
       {"trapped_timeout", &TaskParameters::trapped_timeout},
+      {"stall_time", &TaskParameters::stall_time},
+      {"stall_distance", &TaskParameters::stall_distance},
       {"min_memory_confidence", &TaskParameters::min_memory_confidence},
       {"search_timeout", &TaskParameters::search_timeout},
       {"go_to_timeout", &TaskParameters::go_to_timeout},

@@ -57,10 +57,12 @@ TaskSpec spec(const std::string& text)
   return TaskSpec::parseText(text).at(0);
 }
 
-// A 10 m x 10 m map (origin -5, -5; 0.1 m cells) with a wall along x = 1 from y = -3 to y = 3.
+// A 10 m x 10 m room (origin -5, -5; 0.1 m cells; walls on its border) with a wall along x = 1 from y = -3 to
+// y = 3.
 OccupancyMap wallMap()
 {
   cv::Mat1b cells(100, 100, uchar(0));
+  cv::rectangle(cells, cv::Rect(0, 0, 100, 100), 100, 2);
   for (int r = 20; r < 80; ++r)
     for (int c = 60; c < 62; ++c)
       cells(r, c) = 100;
@@ -385,7 +387,7 @@ TEST(TaskManager, FindAndReturnOnAPointRobot)
       const double s = std::min(d, 0.1);
       // The point robot refuses to enter the wall (the base's STM would stop it).
       const double nx = x + (d > 0 ? dx / d * s : 0), ny = y + (d > 0 ? dy / d * s : 0);
-      if (!(nx > 0.8 && nx < 1.4 && std::abs(ny) < 3.2))
+      if (!(nx > 0.8 && nx < 1.4 && std::abs(ny) < 3.2) && std::abs(nx) < 4.6 && std::abs(ny) < 4.6)
       {
         x = nx;
         y = ny;

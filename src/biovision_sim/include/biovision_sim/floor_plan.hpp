@@ -46,6 +46,18 @@ public:
   /// footprint or within half a cell of one, else 0. cell > 0, rows/cols ≥ 0.
   cv::Mat1b rasterize(double origin_x, double origin_y, double cell, int rows, int cols) const;
 
+  /// A footprint a viewer sees: its index in footprints(), the distance [m] and world bearing [rad] of its centre.
+  struct Sighting
+  {
+    size_t index = 0;
+    double distance = 0, bearing = 0;
+  };
+  /// The footprints whose centre a viewer at (x, y) looking along `heading` [rad, world] sees: within
+  /// `half_fov` [rad] of the heading, within `max_range` [m], and not hidden — the first boundary along the
+  /// bearing is the footprint's own (no other footprint nearer on the line of sight). The ground truth of
+  /// what a camera can recognise or find salient (evaluation tools).
+  std::vector<Sighting> visible(double x, double y, double heading, double half_fov, double max_range) const;
+
 private:
   std::vector<Footprint> footprints_;
 };

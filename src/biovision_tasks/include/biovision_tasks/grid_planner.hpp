@@ -29,7 +29,8 @@ public:
   static std::vector<cv::Point2d> plan(const OccupancyMap& map, const cv::Point2d& start, const cv::Point2d& goal,
                                        const Options& options);
   /// True when the straight segment a→b [m, map] crosses no inflated obstacle cell (`blocked` from
-  /// OccupancyMap::inflatedObstacles); parts outside the map count as free.
+  /// OccupancyMap::inflatedObstacles); parts outside the map count as free, and so do the blocked cells
+  /// the segment starts in (a robot inside the inflation may leave it).
   static bool lineOfSight(const OccupancyMap& map, const cv::Mat1b& blocked, const cv::Point2d& a,
                           const cv::Point2d& b);
 };

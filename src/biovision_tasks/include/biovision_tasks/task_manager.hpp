@@ -21,7 +21,9 @@ namespace biovision_tasks
 ///     (on_failure: continue, abort the rest, or run a fallback task instead of the rest);
 ///  3. the visuomotor buffer: only its head — the highest priority, then the oldest — acts; it is started
 ///     when it first gets there, in the same cycle, so the robot never idles between tasks.
-/// With no task, or no localisation, the command stops the base. ROS-free; not thread-safe (one caller).
+/// With no task, or no localisation, the command stops the base. A progress monitor (beyond the thesis):
+/// a base that was told to drive but has not moved stall_distance in stall_time counts as trapped for the
+/// tasks, whatever the base controller says. ROS-free; not thread-safe (one caller).
 class TaskManager
 {
 public:
@@ -81,6 +83,9 @@ private:
   long next_order_ = 0;
   bool have_last_pose_ = false;
   Percept::Pose last_pose_;
+  bool driving_ = false;         ///< the last command drove the base
+  Percept::Pose progress_pose_;  ///< where the robot was when it last made progress
+  double progress_time_ = 0;     ///< [s] and when
   double last_time_ = 0;
 };
 }  // namespace biovision_tasks

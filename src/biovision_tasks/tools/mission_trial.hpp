@@ -1,0 +1,61 @@
+#pragma once
+
+#include <string>
+
+#include "biovision_attractor/base_attractor_parameters.hpp"
+#include "biovision_attractor/head_attractor_parameters.hpp"
+#include "biovision_tasks/task_parameters.hpp"
+
+namespace biovision_tasks
+{
+/// The thesis's ch. 5 experiment as one closed-loop trial without ROS (mission_eval): in a seeded random
+/// room (biovision_sim::RoomWorldGenerator) a labelled target box stands where the generator put the goal,
+/// behind the robot at the start (out of its view); the TaskManager runs "search target; return_home";
+/// once the target is found, new obstacles are put on the straight way home (the LTM does not know them).
+///
+/// The loop: the simulator's DifferentialDrive and pan Servo; the head's HeadAttractor (explore or
+/// look_ahead, as the task asks; salient regions = the clutter in view, the stand-in of the navigation
+/// eval); the base's BaseAttractor; biovision_memory's ShortTermMemory and LongTermMemory fed with a
+/// ViewScan made from the FloorPlan's ranges across the camera's view (ground-truth ranges, not stereo: the
+/// memory eval measures the stereo path); recognition is an oracle: the target counts as recognised when
+/// its centre is in the camera's view, within recognition_range and not hidden, at its true position plus
+/// Gaussian noise. Odometry is exact (map = odom).
+struct MissionTrialOptions
+{
+  double timeout = 600.0;          ///< [s] of simulated time for the whole mission
+  double physics_rate = 50.0;      ///< [Hz]
+  double control_rate = 10.0;      ///< [Hz] base and head
+  double perception_rate = 5.0;    ///< [Hz] STM/LTM updates, recognition and task cycles (the camera loop)
+  double horizontal_fov = 0.7505;  ///< [rad] Bumblebee-2 (thesis L948)
+  double max_range = 3.0;          ///< [m] of the view scan
+  double recognition_range = 3.0;  ///< [m] the oracle recognises the target within this
+  double position_noise = 0.1;     ///< [m] standard deviation of the recognised position
+  int new_obstacles = 2;           ///< put on the way home once the target is found
+  double servo_speed = 3.0;        ///< [rad/s]
+};
+
+struct MissionTrialResult
+{
+  unsigned seed = 0;
+  bool found = false;
+  double found_time = 0;           ///< [s]
+  double found_error = 0;          ///< [m] recorded target position vs the truth
+  bool returned = false;           ///< the mission's return_home succeeded
+  double final_home_distance = 0;  ///< [m]
+  bool completed = false;          ///< found and returned
+  int collisions = 0;
+  int new_obstacles_placed = 0;
+  double time = 0;           ///< [s] until the task buffer emptied (or the timeout)
+  double path_length = 0;    ///< [m]
+  double min_clearance = 0;  ///< [m] between the base's disc and any footprint
+  int ltm_cells = 0;         ///< obstacle cells in the LTM at the end
+  double ltm_precision = 0;  ///< LTM cells on a true footprint (within one cell) / LTM cells
+  std::string outcome;       ///< the task manager's last finished-task reasons
+};
+
+/// Runs the mission of `seed`. Throws std::invalid_argument for bad parameters.
+MissionTrialResult runMissionTrial(unsigned seed, const TaskParameters& tasks,
+                                   const biovision_attractor::BaseAttractorParameters& base,
+                                   const biovision_attractor::HeadAttractorParameters& head,
+                                   const MissionTrialOptions& options);
+}  // namespace biovision_tasks

@@ -32,15 +32,14 @@ cv::Mat MonitorPanel::compose(const std::vector<Tile>& tiles) const
   for (size_t i = 0; i < tiles.size(); ++i)
   {
     const Tile& t = tiles[i];
-    cv::Mat tile;
+    cv::Mat tile = panel(tileRect(i));  // drawn in place: the callers' pictures stay untouched
     if (t.image.empty())
-      tile = noDataTile(t.topic, tile_size_);
+      noDataTile(t.topic, tile_size_).copyTo(tile);
     else if (t.image.size() == tile_size_ && t.image.type() == CV_8UC3)
-      tile = t.image.clone();
+      t.image.copyTo(tile);
     else
-      tile = fitInto(t.image, tile_size_);
+      fitInto(t.image, tile_size_).copyTo(tile);
     drawTitle(tile, t.title + (t.stale ? "  (stale)" : ""));
-    tile.copyTo(panel(tileRect(i)));
   }
   return panel;
 }

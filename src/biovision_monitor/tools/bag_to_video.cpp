@@ -1,6 +1,7 @@
 // bag_to_video: renders a bag through the monitoring panel (the thesis's eight panels) into a video.
 #include <chrono>
 #include <iostream>
+#include <map>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -16,12 +17,11 @@ using biovision_monitor::PanelRenderer;
 
 namespace
 {
-// Whether the bag's `topic` is `name` (relative) in any namespace: "/stereo/disparity" ends with "stereo/disparity".
+// Whether the bag's `topic` is `name`, both read as global names ("/stereo/disparity" is "stereo/disparity").
 bool matches(const std::string& topic, const std::string& name)
 {
-  return topic == name ||
-         (topic.size() > name.size() && topic.compare(topic.size() - name.size(), name.size(), name) == 0 &&
-          topic[topic.size() - name.size() - 1] == '/');
+  auto strip = [](const std::string& t) { return t.rfind('/', 0) == 0 ? t.substr(1) : t; };
+  return strip(topic) == strip(name);
 }
 }  // namespace
 
@@ -40,12 +40,17 @@ int main(int argc, char** argv)
   options.app().add_option("--columns", p.columns, "panel tiles per row")->check(CLI::Range(1, 8));
   options.app().add_option("--tile-width", p.tile_width, "tile width [px]")->check(CLI::Range(64, 1920));
   options.app().add_option("--tile-height", p.tile_height, "tile height [px]")->check(CLI::Range(48, 1080));
+  std::string left_topic = PanelRenderer::defaultTopic(PanelRenderer::kLeftImage);
+  std::string disparity_topic = PanelRenderer::defaultTopic(PanelRenderer::kDisparity);
+  options.app().add_option("--left", left_topic, "left image topic (e.g. stereo/left/image_raw for a raw bag)");
+  options.app().add_option("--disparity", disparity_topic,
+                           "disparity topic (e.g. stereo/ground_truth/disparity for a simulator bag)");
   options.app().add_option("--json", json, "write frames, duration and timing here");
   options.parse(argc, argv);
 
   try
   {
-    const PanelRenderer renderer(p);
+    PanelRenderer renderer(p);
     rosbag::Bag bag(bag_path, rosbag::bagmode::Read);
     rosbag::View view(bag);
     if (view.size() == 0)
@@ -53,6 +58,8 @@ int main(int argc, char** argv)
     std::array<std::string, PanelRenderer::kPanels> topics;
     for (int i = 0; i < PanelRenderer::kPanels; ++i)
       topics[i] = PanelRenderer::defaultTopic(PanelRenderer::Panel(i));
+    topics[PanelRenderer::kLeftImage] = left_topic;
+    topics[PanelRenderer::kDisparity] = disparity_topic;
     const bool avi = output.size() > 4 && output.substr(output.size() - 4) == ".avi";
     const int fourcc = avi ? cv::VideoWriter::fourcc('M', 'J', 'P', 'G') : cv::VideoWriter::fourcc('m', 'p', '4', 'v');
     cv::VideoWriter writer;
@@ -61,8 +68,11 @@ int main(int argc, char** argv)
     ros::Time next = begin;
     const ros::Duration step(1.0 / fps);
     size_t frames = 0, messages = 0;
+    std::map<std::string, size_t> used;  // messages per topic
     const auto start = std::chrono::steady_clock::now();
+    ros::Time last_frame;
     auto frame = [&](const ros::Time& at) {
+      last_frame = at;
       const cv::Mat panel = renderer.renderPanel(in, topics, at);
       if (!writer.isOpened())
       {
@@ -83,7 +93,7 @@ int main(int argc, char** argv)
       const std::string& topic = m.getTopic();
       const ros::Time t = m.getTime();
       using P = PanelRenderer;
-      if (matches(topic, P::defaultTopic(P::kLeftImage)) && (in.left = m.instantiate<sensor_msgs::Image>()))
+      if (matches(topic, left_topic) && (in.left = m.instantiate<sensor_msgs::Image>()))
         in.received[P::kLeftImage] = t;
       else if (matches(topic, "objects"))
         in.objects = m.instantiate<biovision_msgs::RecognizedObjectArray>();
@@ -91,8 +101,7 @@ int main(int argc, char** argv)
         in.received[P::kSaliencyMap] = in.received[P::kThresholdedSaliency] = t;
       else if (matches(topic, "saliency/regions"))
         in.regions = m.instantiate<biovision_msgs::SalientRegionArray>();
-      else if (matches(topic, P::defaultTopic(P::kDisparity)) &&
-               (in.disparity = m.instantiate<stereo_msgs::DisparityImage>()))
+      else if (matches(topic, disparity_topic) && (in.disparity = m.instantiate<stereo_msgs::DisparityImage>()))
         in.received[P::kDisparity] = t;
       else if (matches(topic, P::defaultTopic(P::kBaseAttractor)) &&
                (in.base = m.instantiate<biovision_msgs::AttractorState>()))
@@ -107,11 +116,13 @@ int main(int argc, char** argv)
       else
         continue;
       ++messages;
+      ++used[topic];
       if (frames % 50 == 0 && frames > 0)
         std::cerr << "\rbag_to_video: " << frames << " frames, " << (t - begin).toSec() << " of "
                   << (end - begin).toSec() << " s" << std::flush;
     }
-    frame(end);
+    if (frames == 0 || last_frame < end)  // the bag's last state
+      frame(end);
     writer.release();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::cerr << "\rbag_to_video: wrote " << output << ": " << frames << " frames from " << messages << " messages in "
@@ -122,6 +133,7 @@ int main(int argc, char** argv)
                                                            {"output", output},
                                                            {"frames", frames},
                                                            {"messages_used", messages},
+                                                           {"messages_per_topic", used},
                                                            {"bag_duration_s", (end - begin).toSec()},
                                                            {"wall_s", seconds}});
   }

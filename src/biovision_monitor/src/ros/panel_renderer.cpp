@@ -122,8 +122,33 @@ cv::Mat PanelRenderer::renderTile(Panel p, const Inputs& in, cv::Size size) cons
   }
 }
 
+std::array<const void*, 2> PanelRenderer::inputKey(Panel p, const Inputs& in)
+{
+  switch (p)
+  {
+    case kLeftImage:
+      return {in.left.get(), in.objects.get()};
+    case kSaliencyMap:
+      return {in.saliency.get(), nullptr};
+    case kThresholdedSaliency:
+      return {in.saliency.get(), in.regions.get()};
+    case kDisparity:
+      return {in.disparity.get(), nullptr};
+    case kBaseAttractor:
+      return {in.base.get(), nullptr};
+    case kHeadAttractor:
+      return {in.head.get(), nullptr};
+    case kLtm:
+      return {in.ltm.get(), nullptr};
+    case kStm:
+      return {in.stm.get(), nullptr};
+    default:
+      return {nullptr, nullptr};
+  }
+}
+
 cv::Mat PanelRenderer::renderPanel(const Inputs& in, const std::array<std::string, kPanels>& topics,
-                                   const ros::Time& now, std::string* errors) const
+                                   const ros::Time& now, std::string* errors)
 {
   const cv::Size size(p_.tile_width, p_.tile_height);
   std::vector<MonitorPanel::Tile> tiles(kPanels);
@@ -134,18 +159,27 @@ cv::Mat PanelRenderer::renderPanel(const Inputs& in, const std::array<std::strin
     MonitorPanel::Tile& t = tiles[i];
     t.title = title(Panel(i));
     t.topic = topics[i];
-    try
+    const auto key = inputKey(Panel(i), in);
+    if (key[0] && key == cached_keys_[i] && cached_tiles_[i].size() == size)
     {
-      t.image = renderTile(Panel(i), in, size);
+      t.image = cached_tiles_[i];
     }
-    catch (const std::exception& e)
-    {
-      t.image = cv::Mat(size, CV_8UC3, cv::Scalar(0, 0, 120));
-      putTextCentred(t.image, "cannot draw " + topics[i], size.height / 2 - 4, colours::kText, 0.45);
-      putTextCentred(t.image, e.what(), size.height / 2 + 16, colours::kText, 0.35);
-      if (errors)
-        *errors = topics[i] + ": " + e.what();
-    }
+    else
+      try
+      {
+        t.image = renderTile(Panel(i), in, size);
+        cached_keys_[i] = key;
+        cached_tiles_[i] = t.image;
+      }
+      catch (const std::exception& e)
+      {
+        t.image = cv::Mat(size, CV_8UC3, cv::Scalar(0, 0, 120));
+        putTextCentred(t.image, "cannot draw " + topics[i], size.height / 2 - 4, colours::kText, 0.45);
+        putTextCentred(t.image, e.what(), size.height / 2 + 16, colours::kText, 0.35);
+        if (errors)
+          *errors = topics[i] + ": " + e.what();
+        cached_keys_[i] = {};
+      }
     const ros::Time& at = in.received[i];
     t.stale = !t.image.empty() && !at.isZero() && now >= at && (now - at).toSec() > p_.stale_after;
   }

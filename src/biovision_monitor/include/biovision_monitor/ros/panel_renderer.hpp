@@ -65,13 +65,20 @@ public:
 
   /// The eight panels composed (MonitorPanel). `topics` = what "no data on" names per panel (resolved);
   /// a panel older than stale_after at `now` is marked stale; a panel that throws shows the error text.
-  /// `errors` (optional) receives the last error message, empty when none.
+  /// `errors` (optional) receives the last error message, empty when none. A tile whose input messages
+  /// are the same as at the previous call is reused, not redrawn (the memories change about once a
+  /// second, the panel is composed at 5 Hz); so calls must not overlap (the callers hold a lock).
   cv::Mat renderPanel(const Inputs& in, const std::array<std::string, kPanels>& topics, const ros::Time& now,
-                      std::string* errors = nullptr) const;
+                      std::string* errors = nullptr);
 
   const MonitorParameters& parameters() const { return p_; }
 
 private:
+  /// The messages tile `p` is drawn from (their addresses): equal keys = the same picture.
+  static std::array<const void*, 2> inputKey(Panel p, const Inputs& in);
+
   MonitorParameters p_;
+  std::array<std::array<const void*, 2>, kPanels> cached_keys_{};
+  std::array<cv::Mat, kPanels> cached_tiles_;
 };
 }  // namespace biovision_monitor

@@ -34,6 +34,8 @@ PACKAGES=(
   libcli11-dev nlohmann-json3-dev zlib1g-dev
   # tests and benchmarks
   googletest libgtest-dev libbenchmark-dev valgrind
+  # the rviz rostest: screenshots of its private Xvfb display (Xlib)
+  libx11-dev
 )
 
 missing=()

@@ -102,6 +102,35 @@ cv::Mat screenshot(Display* display)
   return out;
 }
 
+// rviz's Image displays sit in the left dock column, each a black area with the picture scaled into its
+// middle: the row ranges where column 5 is black, at least 20 rows tall, and in each the bounding box of
+// the picture (non-black pixels) within the column's `width` px.
+std::vector<cv::Rect> imageViews(const cv::Mat& shot, int width)
+{
+  std::vector<cv::Rect> views;
+  int start = -1;
+  for (int y = 0; y <= shot.rows; ++y)
+  {
+    const bool black = y < shot.rows && shot.at<cv::Vec3b>(y, 5) == cv::Vec3b(0, 0, 0);
+    if (black && start < 0)
+      start = y;
+    if (!black && start >= 0)
+    {
+      if (y - start >= 20)
+      {
+        cv::Mat grey;
+        cv::cvtColor(shot(cv::Rect(0, start, width, y - start)), grey, cv::COLOR_BGR2GRAY);
+        std::vector<cv::Point> lit;
+        cv::findNonZero(grey, lit);
+        if (!lit.empty())
+          views.push_back(cv::boundingRect(lit) + cv::Point(0, start));
+      }
+      start = -1;
+    }
+  }
+  return views;
+}
+
 // Share of the panel tile's pixels that are the "no data" grey (60, 60, 60).
 double noDataShare(const cv::Mat& panel, int index)
 {
@@ -135,7 +164,7 @@ TEST(MonitorRviz, EveryViewHasContentAndThePanelHasEightTiles)
 
   std::vector<std::unique_ptr<TopicProbe<sensor_msgs::Image>>> probes;
   for (const auto& p : kPlots)
-    probes.push_back(std::make_unique<TopicProbe<sensor_msgs::Image>>(nh, "monitor/" + p, 2));
+    probes.push_back(std::make_unique<TopicProbe<sensor_msgs::Image>>(nh, "monitor/" + p, 10));
   TopicProbe<sensor_msgs::Image> panel(nh, "monitor/panel", 2);
 
   // rviz subscribes to every view.
@@ -195,6 +224,35 @@ TEST(MonitorRviz, EveryViewHasContentAndThePanelHasEightTiles)
   cv::Scalar mean, dev;
   cv::meanStdDev(shot, mean, dev);
   EXPECT_GT(dev[0] + dev[1] + dev[2], 30.0);
+  // Every view shows its picture, not the empty display ("No Image"): for each picture rviz drew, the view
+  // whose last ten images (rviz draws what it received a frame or two ago), scaled to the drawn box,
+  // correlate best with it (normalised); every view must be the best match of some drawn box, at > 0.3.
+  const std::vector<cv::Rect> views = imageViews(shot, kWidth / 5);
+  EXPECT_GE(views.size(), kPlots.size()) << "image views found in the screenshot's dock column";
+  std::vector<double> matched(kPlots.size(), -1.0);
+  for (const cv::Rect& v : views)
+  {
+    if (v.width < 8 || v.height < 8)
+      continue;
+    int best_plot = -1;
+    double best = -1;
+    for (size_t i = 0; i < kPlots.size(); ++i)
+      for (const auto& m : probes[i]->messages())
+      {
+        cv::Mat scaled, score;
+        cv::resize(cv_bridge::toCvShare(m, "bgr8")->image, scaled, v.size(), 0, 0, cv::INTER_AREA);
+        cv::matchTemplate(shot(v), scaled, score, cv::TM_CCOEFF_NORMED);
+        if (score.at<float>(0, 0) > best)
+          best = score.at<float>(0, 0), best_plot = int(i);
+      }
+    if (best_plot >= 0)
+      matched[best_plot] = std::max(matched[best_plot], best);
+  }
+  for (size_t i = 0; i < kPlots.size(); ++i)
+  {
+    ROS_INFO("monitor/%s: drawn by rviz, correlation %.2f", kPlots[i].c_str(), matched[i]);
+    EXPECT_GT(matched[i], 0.3) << "no view in rviz shows monitor/" << kPlots[i] << "'s picture";
+  }
   XCloseDisplay(display);
   stop(rviz);
   stop(xvfb);

@@ -41,8 +41,12 @@ void MonitorPanelNodelet::onInitNodelet()
     s.add("snapshot", snapshot_.empty() ? std::string("none") : snapshot_);
   };
   diagnostics_.init(nh, pnh, getName(), options);
-  // A backward jump of ROS time: the stored messages (and their ages) belong to the old time line.
-  diagnostics_.clockJumps().onJumpBack([this] { inputs_.clear(); });
+  // A backward jump of ROS time: the stored messages (and their ages) belong to the old time line. Seen
+  // at every composition (own guard: it must not wait for the diagnostics' 1 Hz check).
+  clock_jumps_.onJumpBack([this] {
+    NODELET_WARN("ROS time jumped back: forgetting the stored inputs");
+    inputs_.clear();
+  });
 
   reconfigure_server_ = std::make_unique<dynamic_reconfigure::Server<MonitorConfig>>(reconfigure_mutex_, pnh);
   reconfigure_server_->setCallback([this](MonitorConfig& c, uint32_t level) { reconfigure(c, level); });
@@ -95,6 +99,7 @@ void MonitorPanelNodelet::render(const ros::WallTimerEvent&)
   if (!isSubscribed())
     return;  // lazy: nothing rendered while nobody listens
   const auto start = std::chrono::steady_clock::now();
+  clock_jumps_.observe(ros::Time::now());
   const PanelRenderer::Inputs in = inputs_.snapshot();
   std::string error;
   cv::Mat panel;

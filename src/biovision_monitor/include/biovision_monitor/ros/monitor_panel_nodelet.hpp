@@ -13,6 +13,7 @@
 
 #include "biovision_monitor/ros/panel_input_subscriber.hpp"
 #include "biovision_monitor/ros/panel_renderer.hpp"
+#include "biovision_ros_common/clock_jump_guard.hpp"
 #include "biovision_ros_common/lazy_nodelet.hpp"
 #include "biovision_ros_common/nodelet_diagnostics.hpp"
 
@@ -47,6 +48,7 @@ private:
   double snapshot_period_ = 2.0;
   ros::WallTime last_snapshot_;
   double last_ms_ = 0.0;
+  biovision_ros_common::ClockJumpGuard clock_jumps_;
   biovision_ros_common::NodeletDiagnostics diagnostics_;
   boost::recursive_mutex reconfigure_mutex_;  // before the server: it must outlive it
   std::unique_ptr<dynamic_reconfigure::Server<MonitorConfig>> reconfigure_server_;

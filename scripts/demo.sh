@@ -8,7 +8,8 @@ set +u; source devel/setup.bash; set -u
 export ROS_HOME=${ROS_HOME:-$PWD/build/ros_home}
 mkdir -p "$out" "$ROS_HOME"
 rm -f "$out/report.json" "$out/report.md" "$out/fixations.json" "$out/fixations.md" "$out/pan.csv" \
-  "$out/recognition.json" "$out/recognition.md" "$out/objects.bin"
+  "$out/recognition.json" "$out/recognition.md" "$out/objects.bin" "$out/panel.png" "$out/pan.png" \
+  "$out/rates.png" "$out/report.html"
 # A private master port so a demo never talks to a roscore the user already runs.
 port=$((20000 + RANDOM % 20000))
 export ROS_MASTER_URI=http://localhost:$port
@@ -20,7 +21,11 @@ if [[ ! -f "$out/report.json" ]]; then
   tail -n 30 "$out/roslaunch.log"
   exit 1
 fi
+# Pictures (panel.png from monitor_panel, pan.png, rates.png) and one self-contained report.html.
+rosrun biovision_monitor run_report "$out" >"$out/run_report.log" 2>&1 ||
+  { echo "demo: run_report failed:"; cat "$out/run_report.log"; }
 cat "$out/report.md"
 [[ -f "$out/fixations.md" ]] && { echo; cat "$out/fixations.md"; }
 [[ -f "$out/recognition.md" ]] && { echo; cat "$out/recognition.md"; }
+[[ -f "$out/report.html" ]] && { echo; echo "Pictures and report: $out/report.html"; }
 /usr/bin/python3 -c 'import json,sys; sys.exit(0 if json.load(open(sys.argv[1]))["ok"] else 1)' "$out/report.json"

@@ -38,6 +38,8 @@ PACKAGES=(
   libdc1394-dev pkg-config
   # tests and benchmarks
   googletest libgtest-dev libbenchmark-dev valgrind
+  # the rviz rostest: screenshots of its private Xvfb display (Xlib)
+  libx11-dev
 )
 
 missing=()

@@ -1,0 +1,40 @@
+#pragma once
+
+#include <string>
+
+#include <opencv2/core.hpp>
+
+/// Drawing helpers shared by the plots and the panel (OpenCV only). Images are CV_8UC3 BGR.
+namespace biovision_monitor
+{
+/// Colours of every plot (BGR).
+namespace colours
+{
+const cv::Scalar kBackground(255, 255, 255);
+const cv::Scalar kAxis(0, 0, 0);
+const cv::Scalar kGrid(200, 200, 200);
+const cv::Scalar kAttraction(0, 150, 0);
+const cv::Scalar kRepulsion(0, 0, 210);
+const cv::Scalar kSum(200, 80, 0);
+const cv::Scalar kCurrent(0, 140, 255);
+const cv::Scalar kNoData(60, 60, 60);
+const cv::Scalar kText(255, 255, 255);
+}  // namespace colours
+
+/// `image` (CV_8UC1 or CV_8UC3) scaled to fit inside `size` keeping its aspect ratio, centred on black.
+/// `scale` and `offset` receive the mapping image px -> tile px (tile = image * scale + offset).
+cv::Mat fitInto(const cv::Mat& image, cv::Size size, double* scale = nullptr, cv::Point2d* offset = nullptr);
+
+/// A tile of `size` saying "no data on <topic>" (dark grey, centred white text), for a panel whose
+/// input never arrived.
+cv::Mat noDataTile(const std::string& topic, cv::Size size);
+
+/// Draws `text` with a dark backing strip across the top of `image` (the panel's tile titles).
+void drawTitle(cv::Mat& image, const std::string& text);
+
+/// Draws `text` centred horizontally at baseline row `y`, scaled down until it fits the width.
+void putTextCentred(cv::Mat& image, const std::string& text, int y, const cv::Scalar& colour, double scale = 0.5);
+
+/// "%.*f" of `value` with `digits` decimals.
+std::string formatNumber(double value, int digits);
+}  // namespace biovision_monitor

@@ -1,0 +1,227 @@
+#include "biovision_monitor/run_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "biovision_common/atomic_file.hpp"
+#include "biovision_monitor/drawing.hpp"
+#include "biovision_monitor/time_series_plot.hpp"
+
+namespace biovision_monitor
+{
+namespace
+{
+bool exists(const std::string& path)
+{
+  std::ifstream f(path);
+  return f.good();
+}
+
+nlohmann::json readJson(const std::string& path)
+{
+  std::ifstream f(path);
+  try
+  {
+    return nlohmann::json::parse(f);
+  }
+  catch (const nlohmann::json::exception& e)
+  {
+    throw std::runtime_error(path + ": not JSON: " + e.what());
+  }
+}
+
+std::string html(const std::string& text)
+{
+  std::string out;
+  for (char c : text)
+    switch (c)
+    {
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '&':
+        out += "&amp;";
+        break;
+      default:
+        out += c;
+    }
+  return out;
+}
+
+void writePng(const std::string& path, const cv::Mat& image)
+{
+  std::vector<uchar> png;
+  cv::imencode(".png", image, png);
+  biovision_common::writeFileAtomically(path, png.data(), png.size());
+}
+
+std::vector<cv::Point2d> readPanCsv(const std::string& path)
+{
+  std::ifstream f(path);
+  std::string line;
+  std::vector<cv::Point2d> points;
+  std::getline(f, line);  // header
+  for (int n = 2; std::getline(f, line); ++n)
+  {
+    if (line.empty())
+      continue;
+    std::istringstream s(line);
+    double t = 0, pan = 0;
+    char comma = 0;
+    if (!(s >> t >> comma >> pan) || comma != ',')
+      throw std::runtime_error(path + ":" + std::to_string(n) + ": expected \"t,pan\", got \"" + line + "\"");
+    points.emplace_back(t, pan * 180.0 / M_PI);
+  }
+  return points;
+}
+
+cv::Mat ratesChart(const nlohmann::json& report)
+{
+  const auto& topics = report.at("topics");
+  const int rows = std::max<int>(1, int(topics.size()));
+  const int row_h = 20, label_w = 260, width = 720;
+  cv::Mat image(rows * row_h + 40, width, CV_8UC3, colours::kBackground);
+  double max_rate = 1.0;
+  for (const auto& [name, t] : topics.items())
+    max_rate = std::max(max_rate, t.value("rate_hz", 0.0));
+  cv::putText(image, "message rate [Hz] per topic", {8, 16}, cv::FONT_HERSHEY_SIMPLEX, 0.45, colours::kAxis, 1,
+              cv::LINE_AA);
+  int y = 28;
+  for (const auto& [name, t] : topics.items())
+  {
+    const double rate = t.value("rate_hz", 0.0);
+    const int messages = t.value("messages", 0);
+    const int bar = int((width - label_w - 70) * rate / max_rate);
+    cv::putText(image, name, {8, y + 14}, cv::FONT_HERSHEY_SIMPLEX, 0.4, colours::kAxis, 1, cv::LINE_AA);
+    const cv::Scalar colour = messages > 0 ? colours::kSum : colours::kRepulsion;
+    cv::rectangle(image, {label_w, y + 3}, {label_w + std::max(bar, 2), y + row_h - 3}, colour, cv::FILLED);
+    cv::putText(image, messages > 0 ? formatNumber(rate, 1) : std::string("silent"),
+                {label_w + std::max(bar, 2) + 6, y + 14}, cv::FONT_HERSHEY_SIMPLEX, 0.4, colour, 1, cv::LINE_AA);
+    y += row_h;
+  }
+  return image;
+}
+}  // namespace
+
+std::string RunReport::base64(const std::vector<unsigned char>& bytes)
+{
+  static const char* kTable = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  for (size_t i = 0; i < bytes.size(); i += 3)
+  {
+    const unsigned v = unsigned(bytes[i]) << 16 | (i + 1 < bytes.size() ? unsigned(bytes[i + 1]) << 8 : 0u) |
+                       (i + 2 < bytes.size() ? unsigned(bytes[i + 2]) : 0u);
+    out += kTable[(v >> 18) & 63];
+    out += kTable[(v >> 12) & 63];
+    out += i + 1 < bytes.size() ? kTable[(v >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? kTable[v & 63] : '=';
+  }
+  return out;
+}
+
+std::vector<std::string> RunReport::write() const
+{
+  const std::string dir = folder_ + "/";
+  std::vector<std::string> written, missing;
+  std::ostringstream page;
+  nlohmann::json report, fixations, recognition;
+  const bool have_report = exists(dir + "report.json"), have_fix = exists(dir + "fixations.json"),
+             have_recognition = exists(dir + "recognition.json");
+  if (have_report)
+    report = readJson(dir + "report.json");
+  else
+    missing.push_back("report.json");
+  if (have_fix)
+    fixations = readJson(dir + "fixations.json");
+  else
+    missing.push_back("fixations.json");
+  if (have_recognition)
+    recognition = readJson(dir + "recognition.json");
+  else
+    missing.push_back("recognition.json");
+
+  if (exists(dir + "pan.csv"))
+  {
+    std::vector<TimeSeriesPlot::Mark> marks;
+    if (have_fix)
+      for (const auto& f : fixations.value("fixations", nlohmann::json::array()))
+        marks.push_back({f.value("t", NAN), f.value("object", std::string("?"))});
+    writePng(dir + "pan.png",
+             TimeSeriesPlot().render(readPanCsv(dir + "pan.csv"), marks, "head pan [deg] over time, fixations marked",
+                                     cv::Size(900, 300)));
+    written.push_back(dir + "pan.png");
+  }
+  else
+    missing.push_back("pan.csv");
+  if (have_report)
+  {
+    writePng(dir + "rates.png", ratesChart(report));
+    written.push_back(dir + "rates.png");
+  }
+
+  const std::string title = have_report ? report.value("title", std::string("BioVision run")) : "BioVision run";
+  page << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" << html(title)
+       << "</title>\n<style>body{font-family:sans-serif;max-width:1400px;margin:1em auto;padding:0 1em}"
+          "table{border-collapse:collapse}td,th{border:1px solid #bbb;padding:2px 8px;text-align:left}"
+          "img{max-width:100%;border:1px solid #ccc}.bad{color:#b00}</style></head><body>\n";
+  page << "<h1>" << html(title) << "</h1>\n";
+  if (have_report)
+  {
+    const bool ok = report.value("ok", false);
+    page << "<p class=\"" << (ok ? "" : "bad") << "\">Result: <b>" << (ok ? "OK" : "FAILED") << "</b> (listened "
+         << formatNumber(report.value("listened_s", 0.0), 1) << " s)</p>\n";
+  }
+  for (const char* picture : {"panel.png", "rviz.png", "pan.png", "rates.png"})
+  {
+    const std::string path = dir + picture;
+    std::ifstream f(path, std::ios::binary);
+    if (!f)
+      continue;
+    const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    page << "<h2>" << picture << "</h2>\n<img alt=\"" << picture << "\" src=\"data:image/png;base64," << base64(bytes)
+         << "\">\n";
+  }
+  if (have_report)
+  {
+    page << "<h2>Topics</h2>\n<table><tr><th>topic</th><th>messages</th><th>rate [Hz]</th></tr>\n";
+    for (const auto& [name, t] : report.at("topics").items())
+      page << "<tr><td><code>" << html(name) << "</code></td><td>" << t.value("messages", 0) << "</td><td>"
+           << formatNumber(t.value("rate_hz", 0.0), 2) << "</td></tr>\n";
+    page << "</table>\n";
+  }
+  if (have_fix)
+  {
+    page << "<h2>Fixations</h2>\n<table><tr><th>t [s]</th><th>object</th><th>pan [deg]</th></tr>\n";
+    for (const auto& f : fixations.value("fixations", nlohmann::json::array()))
+      page << "<tr><td>" << formatNumber(f.value("t", 0.0), 1) << "</td><td>" << html(f.value("object", ""))
+           << "</td><td>" << formatNumber(f.value("pan_deg", 0.0), 1) << "</td></tr>\n";
+    page << "</table>\n";
+  }
+  if (have_recognition)
+    page << "<h2>Recognition</h2>\n<p>" << recognition.value("correct", 0) << " right labels, "
+         << recognition.value("wrong", 0) << " wrong, " << recognition.value("mislocated", 0) << " mislocated, in "
+         << recognition.value("objects_messages", 0) << " objects messages.</p>\n";
+  if (!missing.empty())
+  {
+    page << "<p>Not in this run's folder:";
+    for (const auto& m : missing)
+      page << " <code>" << html(m) << "</code>";
+    page << "</p>\n";
+  }
+  page << "</body></html>\n";
+  biovision_common::writeFileAtomically(dir + "report.html", page.str());
+  written.push_back(dir + "report.html");
+  return written;
+}
+}  // namespace biovision_monitor

@@ -1,0 +1,78 @@
+#include "biovision_monitor/time_series_plot.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <opencv2/imgproc.hpp>
+
+#include "biovision_monitor/drawing.hpp"
+
+namespace biovision_monitor
+{
+int TimeSeriesPlot::Axes::column(double t) const
+{
+  return area.x + int(std::lround((t - t0) / (t1 - t0) * (area.width - 1)));
+}
+
+int TimeSeriesPlot::Axes::row(double y) const
+{
+  return area.br().y - 1 - int(std::lround((y - y0) / (y1 - y0) * (area.height - 1)));
+}
+
+cv::Mat TimeSeriesPlot::render(const std::vector<cv::Point2d>& points, const std::vector<Mark>& marks,
+                               const std::string& title, cv::Size size, Axes* axes_out) const
+{
+  size.width = std::max(size.width, 160);
+  size.height = std::max(size.height, 120);
+  cv::Mat image(size, CV_8UC3, colours::kBackground);
+  Axes axes;
+  axes.area = cv::Rect(48, 24, size.width - 48 - 10, size.height - 24 - 34);
+  bool any = false;
+  double t0 = INFINITY, t1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+  for (const auto& p : points)
+    if (std::isfinite(p.x) && std::isfinite(p.y))
+    {
+      any = true;
+      t0 = std::min(t0, p.x), t1 = std::max(t1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+    }
+  if (any)
+  {
+    const double pad = std::max(1e-6, 0.05 * (y1 - y0));
+    axes.t0 = t0, axes.t1 = t1 > t0 ? t1 : t0 + 1, axes.y0 = y0 - pad, axes.y1 = y1 + pad;
+  }
+  cv::rectangle(image, axes.area, colours::kAxis, 1);
+  if (axes.y0 < 0 && axes.y1 > 0)
+    cv::line(image, {axes.area.x, axes.row(0)}, {axes.area.br().x - 1, axes.row(0)}, colours::kGrid, 1);
+  auto label = [&](const std::string& text, cv::Point at) {
+    cv::putText(image, text, at, cv::FONT_HERSHEY_SIMPLEX, 0.38, colours::kAxis, 1, cv::LINE_AA);
+  };
+  label(formatNumber(axes.y1, 1), {2, axes.area.y + 10});
+  label(formatNumber(axes.y0, 1), {2, axes.area.br().y - 2});
+  label(formatNumber(axes.t0, 1) + " s", {axes.area.x, axes.area.br().y + 14});
+  label(formatNumber(axes.t1, 1) + " s", {axes.area.br().x - 50, axes.area.br().y + 14});
+  cv::putText(image, title, {axes.area.x, 16}, cv::FONT_HERSHEY_SIMPLEX, 0.45, colours::kAxis, 1, cv::LINE_AA);
+  int mark_row = 0;
+  for (const Mark& m : marks)
+  {
+    if (!std::isfinite(m.t) || m.t < axes.t0 || m.t > axes.t1)
+      continue;
+    const int x = axes.column(m.t);
+    for (int y = axes.area.y; y < axes.area.br().y; y += 6)
+      cv::line(image, {x, y}, {x, std::min(y + 3, axes.area.br().y - 1)}, colours::kAttraction, 1);
+    cv::putText(image, m.label, {x + 2, axes.area.y + 10 + 10 * (mark_row % 4)}, cv::FONT_HERSHEY_SIMPLEX, 0.3,
+                colours::kAttraction, 1, cv::LINE_AA);
+    ++mark_row;
+  }
+  std::vector<cv::Point> line;
+  for (const auto& p : points)
+    if (std::isfinite(p.x) && std::isfinite(p.y))
+      line.emplace_back(axes.column(p.x), axes.row(p.y));
+  if (line.size() > 1)
+    cv::polylines(image, line, false, colours::kSum, 1, cv::LINE_AA);
+  if (!any)
+    putTextCentred(image, "no samples", size.height / 2, colours::kAxis, 0.5);
+  if (axes_out)
+    *axes_out = axes;
+  return image;
+}
+}  // namespace biovision_monitor

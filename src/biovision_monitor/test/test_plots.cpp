@@ -1,0 +1,327 @@
+// The plots of known states have their features where they belong (ROS-free, no master).
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "biovision_monitor/attractor_plot.hpp"
+#include "biovision_monitor/disparity_plot.hpp"
+#include "biovision_monitor/drawing.hpp"
+#include "biovision_monitor/ego_map_plot.hpp"
+#include "biovision_monitor/monitor_panel.hpp"
+#include "biovision_monitor/monitor_parameters.hpp"
+#include "biovision_monitor/object_plot.hpp"
+#include "biovision_monitor/occupancy_grid_plot.hpp"
+#include "biovision_monitor/run_report.hpp"
+#include "biovision_monitor/saliency_plot.hpp"
+#include "biovision_monitor/time_series_plot.hpp"
+
+using namespace biovision_monitor;
+
+namespace
+{
+constexpr double kDeg = M_PI / 180.0;
+const cv::Size kSize(320, 240);
+
+bool near(const cv::Vec3b& a, const cv::Scalar& b, int tolerance = 40)
+{
+  return std::abs(a[0] - b[0]) + std::abs(a[1] - b[1]) + std::abs(a[2] - b[2]) <= tolerance;
+}
+
+// Whether a pixel of `colour` lies within `radius` px of `p`.
+bool colourNear(const cv::Mat& image, cv::Point p, const cv::Scalar& colour, int radius)
+{
+  for (int y = p.y - radius; y <= p.y + radius; ++y)
+    for (int x = p.x - radius; x <= p.x + radius; ++x)
+      if (x >= 0 && y >= 0 && x < image.cols && y < image.rows && near(image.at<cv::Vec3b>(y, x), colour))
+        return true;
+  return false;
+}
+
+AttractorView nineSections()
+{
+  AttractorView s;
+  s.controller = "head_pan";
+  for (int i = 0; i < 9; ++i)
+    s.section_angles.push_back((-80 + 20 * i) * kDeg);
+  s.attraction.assign(9, 0.0);
+  s.repulsion.assign(9, 0.0);
+  s.forcelet.assign(9, 0.0);
+  return s;
+}
+
+MonitorParameters defaults;
+}  // namespace
+
+TEST(AttractorPlot, AnAttractorCrossesZeroFallingAtItsAngleAndColumn)
+{
+  AttractorView s = nineSections();
+  s.attraction[6] = 1.0;  // +40 deg
+  s.angle = 0.0;
+  const AttractorPlot plot(defaults.model("head_pan"));
+  const auto crossings = plot.zeroCrossings(s);
+  ASSERT_EQ(crossings.size(), 1u);
+  EXPECT_NEAR(crossings[0].angle, 40 * kDeg, 0.5 * kDeg);
+  EXPECT_TRUE(crossings[0].stable);
+  EXPECT_GT(plot.sum(s, 0.0), 0.0) << "left of the attractor the rate turns the head left (towards it)";
+
+  AttractorPlot::Axes axes;
+  const cv::Mat image = plot.render(s, kSize, &axes);
+  ASSERT_EQ(image.size(), kSize);
+  const int column = axes.column(40 * kDeg), zero = axes.row(0.0);
+  // The sum curve passes the zero line at the attractor's column, and the stable-point disc sits there.
+  EXPECT_TRUE(colourNear(image, {column, zero}, colours::kAttraction, 1));
+  EXPECT_FALSE(colourNear(image, {axes.column(-40 * kDeg), zero}, colours::kAttraction, 2));
+  // The curve is above zero left of the attractor (rate > 0) and below it to the right.
+  EXPECT_TRUE(colourNear(image, {axes.column(20 * kDeg), axes.row(plot.sum(s, 20 * kDeg))}, colours::kSum, 2));
+  EXPECT_LT(axes.row(plot.sum(s, 20 * kDeg)), zero);
+  EXPECT_GT(axes.row(plot.sum(s, 60 * kDeg)), zero);
+}
+
+TEST(AttractorPlot, ARepellerCrossesZeroRisingAtItsAngle)
+{
+  AttractorView s = nineSections();
+  s.repulsion[2] = 1.0;  // -40 deg
+  const AttractorPlot plot(defaults.model("head_pan"));
+  const auto crossings = plot.zeroCrossings(s);
+  ASSERT_EQ(crossings.size(), 1u);
+  EXPECT_NEAR(crossings[0].angle, -40 * kDeg, 0.5 * kDeg);
+  EXPECT_FALSE(crossings[0].stable);
+  AttractorPlot::Axes axes;
+  const cv::Mat image = plot.render(s, kSize, &axes);
+  EXPECT_TRUE(colourNear(image, {axes.column(-40 * kDeg) + 4, axes.row(0.0)}, colours::kRepulsion, 1));
+}
+
+TEST(AttractorPlot, TheCurrentAngleIsADotAtTheControllersRate)
+{
+  AttractorView s = nineSections();
+  s.attraction[4] = 1.0;
+  s.angle = -30 * kDeg;
+  s.rate = 0.2;
+  AttractorPlot::Axes axes;
+  const cv::Mat image = AttractorPlot(defaults.model("head_pan")).render(s, kSize, &axes);
+  EXPECT_TRUE(near(image.at<cv::Vec3b>(axes.row(0.2), axes.column(-30 * kDeg)), colours::kCurrent));
+  EXPECT_FALSE(near(image.at<cv::Vec3b>(axes.row(0.2), axes.column(30 * kDeg)), colours::kCurrent));
+}
+
+TEST(AttractorPlot, TheBasesGoalIsASineAttractorAtTheTarget)
+{
+  AttractorView s = nineSections();
+  s.controller = "base";
+  s.target = -20 * kDeg;
+  const auto crossings = AttractorPlot(defaults.model("base")).zeroCrossings(s);
+  ASSERT_EQ(crossings.size(), 1u);
+  EXPECT_NEAR(crossings[0].angle, -20 * kDeg, 0.5 * kDeg);
+  EXPECT_TRUE(crossings[0].stable);
+  // An obstacle at +20 deg pushes the stable heading to the right (below -20 deg), as Fig. 5.6.
+  s.repulsion[5] = 0.2;
+  const auto pushed = AttractorPlot(defaults.model("base")).zeroCrossings(s);
+  ASSERT_FALSE(pushed.empty());
+  EXPECT_LT(pushed.front().angle, -20 * kDeg);
+}
+
+TEST(AttractorPlot, NonFiniteAndMissingValuesDrawNothingWrong)
+{
+  AttractorView s = nineSections();
+  s.attraction = {NAN, INFINITY};
+  s.repulsion.clear();
+  s.rate = NAN;
+  s.angle = NAN;
+  const cv::Mat image = AttractorPlot(defaults.model("head_pan")).render(s, cv::Size(10, 10));
+  EXPECT_EQ(image.size(), cv::Size(64, 48));
+}
+
+TEST(EgoMapPlot, AnObstacleIsABlackSliceAtItsAngleBeyondItsDistance)
+{
+  EgoMapView stm;
+  stm.section_width = 20 * kDeg;
+  for (int i = 0; i < 9; ++i)
+    stm.section_angles.push_back((-80 + 20 * i) * kDeg);
+  stm.obstacle_distance.assign(9, INFINITY);
+  stm.confidence.assign(9, 1.0);
+  stm.max_range = 2.0;
+  stm.obstacle_distance[6] = 1.0;  // +40 deg: left of the robot
+  EgoMapPlot::Axes axes;
+  const cv::Mat image = EgoMapPlot().render(stm, kSize, &axes);
+  if (getenv("MONITOR_TEST_DUMP"))
+    cv::imwrite("/tmp/stm_test.png", image);
+  const cv::Point obstacle = axes.point(40 * kDeg, 1.3), mirrored = axes.point(-40 * kDeg, 1.3),
+                  before = axes.point(40 * kDeg, 0.7);
+  EXPECT_LT(obstacle.x, axes.robot.x) << "+ = left is drawn to the left";
+  EXPECT_TRUE(near(image.at<cv::Vec3b>(obstacle), cv::Scalar(0, 0, 0), 10));
+  EXPECT_FALSE(near(image.at<cv::Vec3b>(mirrored), cv::Scalar(0, 0, 0), 60));
+  EXPECT_TRUE(near(image.at<cv::Vec3b>(before), cv::Scalar(170, 230, 170), 10));
+  // The neighbouring sector (+20 deg) is free at the same distance.
+  EXPECT_TRUE(near(image.at<cv::Vec3b>(axes.point(20 * kDeg, 1.3)), cv::Scalar(170, 230, 170), 10));
+}
+
+TEST(DisparityPlot, InvalidPixelsAreBlackAndTheBarSpansTheRange)
+{
+  cv::Mat d(120, 160, CV_32FC1);
+  for (int c = 0; c < d.cols; ++c)
+    d.col(c).setTo(c * 64.0 / (d.cols - 1));
+  d(cv::Rect(0, 0, 20, 20)).setTo(-1.0f);
+  const cv::Mat image = DisparityPlot().render(d, 0.0, 64.0, kSize);
+  ASSERT_EQ(image.size(), kSize);
+  // The map is fitted into the 280 x 240 left part: 160 x 120 scaled by 1.75, centred vertically.
+  const double s = 280.0 / 160.0;
+  const int y0 = int((240 - 120 * s) / 2);
+  EXPECT_EQ(image.at<cv::Vec3b>(y0 + 5, 5), cv::Vec3b(0, 0, 0)) << "invalid -> black";
+  const cv::Vec3b far = image.at<cv::Vec3b>(y0 + 100, int(30 * s)),
+                  nearer = image.at<cv::Vec3b>(y0 + 100, int(150 * s));
+  EXPECT_GT(far[0], far[2]) << "small disparity (far) is blue";
+  EXPECT_GT(nearer[2], nearer[0]) << "large disparity (near) is red";
+  // The bar: max colour at its top, min colour at its bottom.
+  const int x = kSize.width - DisparityPlot::kBarWidth + 8;
+  EXPECT_EQ(image.at<cv::Vec3b>(22, x), DisparityPlot::colourOf(64.0, 0.0, 64.0));
+  EXPECT_EQ(image.at<cv::Vec3b>(kSize.height - 14, x), DisparityPlot::colourOf(0.0, 0.0, 64.0));
+  EXPECT_THROW(DisparityPlot().render(d, 5.0, 5.0, kSize), std::invalid_argument);
+  EXPECT_THROW(DisparityPlot().render(cv::Mat(4, 4, CV_8UC1), 0.0, 1.0, kSize), std::invalid_argument);
+}
+
+TEST(SaliencyPlot, ThresholdsAtTheFractionOfTheMaximumAndBoxesTheAttendedRegion)
+{
+  cv::Mat map(120, 160, CV_32FC1, cv::Scalar(0.05f));
+  map(cv::Rect(100, 40, 20, 20)).setTo(1.0f);
+  const SaliencyPlot plot(0.15);
+  const cv::Mat m = plot.mask(map);
+  EXPECT_EQ(cv::countNonZero(m), 400);
+  // The region in full-resolution px of a 320 x 240 image: twice the map's coordinates.
+  RegionView r;
+  r.rank = 0;
+  r.box = cv::Rect(200, 80, 40, 40);
+  RegionView inhibited;
+  inhibited.rank = 1;
+  inhibited.box = cv::Rect(20, 20, 40, 40);
+  inhibited.inhibition = 0.8;
+  const cv::Mat image = plot.renderThresholded(map, {r, inhibited}, 320, 240, kSize);
+  // 160 x 120 -> 320 x 240: scale 2; the box's left edge at x = 200.
+  EXPECT_TRUE(near(image.at<cv::Vec3b>(100, 200), cv::Scalar(0, 0, 255)));
+  EXPECT_TRUE(near(image.at<cv::Vec3b>(100, 220), cv::Scalar(255, 255, 255))) << "salient inside";
+  EXPECT_TRUE(near(image.at<cv::Vec3b>(40, 40), cv::Scalar(255, 0, 255))) << "IoR cross through the centre";
+  EXPECT_THROW(SaliencyPlot(1.5), std::invalid_argument);
+}
+
+TEST(ObjectPlot, BoxesTheObjectWhereItIs)
+{
+  const cv::Mat camera(240, 320, CV_8UC3, cv::Scalar(90, 90, 90));
+  const cv::Mat image = ObjectPlot().render(camera, {{"mug_red", 0.9, cv::Rect(100, 100, 50, 40)}}, kSize);
+  EXPECT_TRUE(near(image.at<cv::Vec3b>(120, 100), cv::Scalar(0, 230, 0)));
+  EXPECT_TRUE(near(image.at<cv::Vec3b>(120, 125), cv::Scalar(90, 90, 90), 5));
+}
+
+TEST(OccupancyGridPlot, RowZeroIsAtTheBottomAndValuesAreGreyLevels)
+{
+  GridView g;
+  g.width = 4;
+  g.height = 3;
+  g.resolution = 0.1;
+  g.data.assign(12, 0);
+  g.data[0] = 100;  // row 0, col 0: the map's bottom-left
+  g.data[11] = -1;
+  const cv::Mat image = OccupancyGridPlot::toImage(g);
+  EXPECT_EQ(image.at<uchar>(2, 0), 0);
+  EXPECT_EQ(image.at<uchar>(0, 3), 160);
+  EXPECT_EQ(image.at<uchar>(1, 1), 255);
+  g.data.pop_back();
+  EXPECT_THROW(OccupancyGridPlot::toImage(g), std::invalid_argument);
+}
+
+TEST(MonitorPanel, EightTilesInTheThesisOrderAndNoDataTilesNameTheirTopic)
+{
+  const MonitorPanel panel(4, kSize);
+  std::vector<MonitorPanel::Tile> tiles(8);
+  for (int i = 0; i < 8; ++i)
+  {
+    tiles[i].title = "tile " + std::to_string(i);
+    tiles[i].topic = "topic/" + std::to_string(i);
+    if (i % 2 == 0)
+      tiles[i].image = cv::Mat(kSize, CV_8UC3, cv::Scalar(0, 200, 0));
+  }
+  const cv::Mat image = panel.compose(tiles);
+  EXPECT_EQ(image.size(), cv::Size(4 * 320 + 3 * MonitorPanel::kGap, 2 * 240 + MonitorPanel::kGap));
+  for (int i = 0; i < 8; ++i)
+  {
+    const cv::Mat tile = image(panel.tileRect(i));
+    const cv::Vec3b centre = tile.at<cv::Vec3b>(60, 10);
+    if (i % 2 == 0)
+      EXPECT_TRUE(near(centre, cv::Scalar(0, 200, 0), 5)) << i;
+    else
+      EXPECT_TRUE(near(centre, colours::kNoData, 5)) << i;
+    cv::Mat grey;
+    cv::cvtColor(tile, grey, cv::COLOR_BGR2GRAY);
+    double lo, hi;
+    cv::minMaxLoc(grey, &lo, &hi);
+    EXPECT_GT(hi - lo, 50) << "tile " << i << " is not uniform (it has a title)";
+  }
+  // Tile 4 starts the second row.
+  EXPECT_EQ(panel.tileRect(4).tl(), cv::Point(0, 240 + MonitorPanel::kGap));
+  EXPECT_THROW(MonitorPanel(0, kSize), std::invalid_argument);
+}
+
+TEST(TimeSeriesPlot, MarksSitAtTheirTimes)
+{
+  TimeSeriesPlot::Axes axes;
+  const cv::Mat image = TimeSeriesPlot().render({{0, -10}, {10, 30}}, {{5.0, "mug"}}, "pan", cv::Size(400, 200), &axes);
+  EXPECT_TRUE(near(image.at<cv::Vec3b>(axes.area.y + 1, axes.column(5.0)), colours::kAttraction));
+  EXPECT_EQ(axes.column(0.0), axes.area.x);
+}
+
+TEST(RunReport, WritesPicturesAndASelfContainedPage)
+{
+  EXPECT_EQ(RunReport::base64({'f', 'o', 'o'}), "Zm9v");
+  EXPECT_EQ(RunReport::base64({'f', 'o'}), "Zm8=");
+  char folder[] = "/tmp/run_report_testXXXXXX";
+  ASSERT_NE(mkdtemp(folder), nullptr);
+  const std::string dir = folder;
+  std::ofstream(dir + "/pan.csv") << "t,pan\n0.0,0.0\n1.0,0.5\n2.0,-0.3\n";
+  std::ofstream(dir + "/fixations.json") << R"({"fixations": [{"t": 1.0, "object": "mug", "pan_deg": 28.6}]})";
+  std::ofstream(dir + "/report.json")
+      << R"({"title": "t", "ok": true, "listened_s": 3, "topics": {"a": {"messages": 3, "rate_hz": 1.0}, "b": {"messages": 0, "rate_hz": 0}}})";
+  const auto written = RunReport(dir).write();
+  EXPECT_EQ(written.size(), 3u);
+  std::ifstream page(dir + "/report.html");
+  std::stringstream text;
+  text << page.rdbuf();
+  EXPECT_NE(text.str().find("data:image/png;base64,iVBOR"), std::string::npos);
+  EXPECT_NE(text.str().find("mug"), std::string::npos);
+  EXPECT_NE(text.str().find("recognition.json"), std::string::npos) << "missing inputs are named";
+  std::ofstream(dir + "/pan.csv") << "t,pan\nbroken\n";
+  EXPECT_THROW(RunReport(dir).write(), std::runtime_error);
+  for (const char* f : {"pan.csv", "fixations.json", "report.json", "report.html", "pan.png", "rates.png"})
+    std::remove((dir + "/" + f).c_str());
+  rmdir(folder);
+}
+
+TEST(MonitorParameters, RejectsValuesOutsideTheirRangeByName)
+{
+  MonitorParameters p;
+  EXPECT_NO_THROW(p.validate());
+  p.tile_width = 10;
+  try
+  {
+    p.validate();
+    FAIL() << "tile_width 10 accepted";
+  }
+  catch (const std::invalid_argument& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("tile_width"), std::string::npos);
+  }
+  p = MonitorParameters();
+  p.head_epsilon_attraction = 0;
+  EXPECT_THROW(p.validate(), std::invalid_argument);
+  p = MonitorParameters();
+  p.rate = NAN;
+  EXPECT_THROW(p.validate(), std::invalid_argument);
+}
+
+int main(int argc, char** argv)
+{
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}

@@ -1,5 +1,7 @@
 #include "biovision_common/tool_options.hpp"
 
+#include <vector>
+
 #include <cstdlib>
 #include <iostream>
 
@@ -33,11 +35,15 @@ ToolOptions::ToolOptions(const std::string& tool, const std::string& description
 
 void ToolOptions::parse(int argc, char** argv)
 {
-  for (int i = 1; i < argc; ++i)
-    command_ += (i > 1 ? " " : "") + std::string(argv[i]);
+  std::vector<char*> args;
+  for (int i = 0; i < argc; ++i)
+    if (i == 0 || std::string(argv[i]).rfind("__", 0) != 0)
+      args.push_back(argv[i]);
+  for (size_t i = 1; i < args.size(); ++i)
+    command_ += (i > 1 ? " " : "") + std::string(args[i]);
   try
   {
-    app_.parse(argc, argv);
+    app_.parse(static_cast<int>(args.size()), args.data());
   }
   catch (const CLI::ParseError& e)
   {

@@ -48,6 +48,14 @@ TEST(ToolOptions, TypedValuesListsAndFlags)
   EXPECT_EQ(options.command(), "--threads 3 --scale 0.5 --levels 2,3,4 --shaped");
 }
 
+TEST(ToolOptions, RoslaunchArgumentsAreSkipped)
+{
+  ToolOptions options("tool", "test tool");
+  const Parsed p = parse({"--threads", "4", "__name:=emulator", "__log:=/tmp/x.log"}, &options);
+  EXPECT_EQ(p.threads, 4);
+  EXPECT_EQ(options.command(), "--threads 4");
+}
+
 TEST(ToolOptions, DefaultsStayWhenOptionsAreAbsent)
 {
   const Parsed p = parse({});

@@ -35,12 +35,7 @@ int main(int argc, char** argv)
   options.app()
       .add_option("--status-period", status_period, "seconds between status lines (0 = none)")
       ->check(biovision_common::kNonNegative);
-  // roslaunch appends __name:= and __log:= when the emulator runs as a <node>: not options of ours.
-  std::vector<char*> args;
-  for (int i = 0; i < argc; ++i)
-    if (std::string(argv[i]).rfind("__", 0) != 0)
-      args.push_back(argv[i]);
-  options.parse(static_cast<int>(args.size()), args.data());
+  options.parse(argc, argv);  // skips roslaunch's __name:= and __log:=
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);
   try

@@ -27,7 +27,8 @@ public:
   CLI::App& app() { return app_; }
 
   /// Parses argv. Prints the usage and exits 0 on --help; prints the error and exits 2 on an unknown
-  /// option, a missing or ill-typed value, or a failed check.
+  /// option, a missing or ill-typed value, or a failed check. Arguments starting with "__" are skipped:
+  /// roslaunch appends __name:= and __log:= when a tool runs as a <node> (the emulators do).
   void parse(int argc, char** argv);
 
   /// The options as given ("--threads 2 --json out.json"), to record how a result was made.

@@ -524,18 +524,7 @@ void MemoryNodelet::publishLtm(const ros::Time& stamp)
     uint32_t id = 0;
     for (const auto& [label, o] : objects_->objects())
     {
-      biovision_msgs::LtmItem item;
-      item.id = 0x80000000u | id++;
-      item.kind = objects_->isLandmark(o) ? "landmark" : "object";
-      item.label = label;
-      item.position.x = o.position.x();
-      item.position.y = o.position.y();
-      item.position.z = o.position.z();
-      item.radius = 0.1f;
-      item.strength = static_cast<float>(objects_->confidence(o));
-      item.observations = o.observations;
-      item.last_seen = ros::Time(std::max(0.0, o.last_seen));
-      items.items.push_back(item);
+      items.items.push_back(objectItem(label, o, 0x80000000u | id++));
     }
   }
   grid.header.stamp = items.header.stamp = stamp;
@@ -545,6 +534,23 @@ void MemoryNodelet::publishLtm(const ros::Time& stamp)
   items_pub_.publish(items);
 }
 
+biovision_msgs::LtmItem MemoryNodelet::objectItem(const std::string& label, const ObjectMemory::Object& o,
+                                                  uint32_t id) const
+{
+  biovision_msgs::LtmItem item;
+  item.id = id;
+  item.kind = objects_->isLandmark(o) ? "landmark" : "object";
+  item.label = label;
+  item.position.x = o.position.x();
+  item.position.y = o.position.y();
+  item.position.z = o.position.z();
+  item.radius = 0.1f;
+  item.strength = static_cast<float>(objects_->confidence(o));
+  item.observations = o.observations;
+  item.last_seen = ros::Time(std::max(0.0, o.last_seen));
+  return item;
+}
+
 bool MemoryNodelet::onList(biovision_msgs::ListMemoryObjects::Request&,
                            biovision_msgs::ListMemoryObjects::Response& res)
 {
@@ -552,18 +558,7 @@ bool MemoryNodelet::onList(biovision_msgs::ListMemoryObjects::Request&,
   uint32_t id = 0;
   for (const auto& [label, o] : objects_->objects())
   {
-    biovision_msgs::LtmItem item;
-    item.id = id++;
-    item.kind = objects_->isLandmark(o) ? "landmark" : "object";
-    item.label = label;
-    item.position.x = o.position.x();
-    item.position.y = o.position.y();
-    item.position.z = o.position.z();
-    item.radius = 0.1f;
-    item.strength = static_cast<float>(objects_->confidence(o));
-    item.observations = o.observations;
-    item.last_seen = ros::Time(std::max(0.0, o.last_seen));
-    res.items.push_back(item);
+    res.items.push_back(objectItem(label, o, id++));
   }
   return true;
 }

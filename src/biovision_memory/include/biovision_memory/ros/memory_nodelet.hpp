@@ -73,6 +73,8 @@ private:
   void onTimer(const ros::WallTimerEvent&);
   void onMapToOdomTimer(const ros::TimerEvent&);
   bool onList(biovision_msgs::ListMemoryObjects::Request&, biovision_msgs::ListMemoryObjects::Response& res);
+  /// One remembered object as an LtmItem (kind "object" or "landmark"), for memory/ltm_items and the list service.
+  biovision_msgs::LtmItem objectItem(const std::string& label, const ObjectMemory::Object& o, uint32_t id) const;
   bool onQuery(biovision_msgs::QueryObject::Request& req, biovision_msgs::QueryObject::Response& res);
   bool onForget(biovision_msgs::ForgetObject::Request& req, biovision_msgs::ForgetObject::Response& res);
   void onTimeJumpBack();

@@ -255,8 +255,8 @@ protected:
 // acknowledged is lost, the node starts every time, and no temporary stays once it has started.
 TEST_F(Persistence, KillDuringSavesLosesNothingAcknowledgedAndLeavesNoDebris)
 {
-  // A memory of some size (about 11 MB: 600 views of 500 keypoints), so that a save takes long enough for
-  // random kills to land in it often.
+  // A memory of some size (about 11 MB: 600 views of 500 keypoints, 60 objects), so that a save takes a
+  // while, as on a robot that has learned for some time.
   {
     const auto model = biovision_recognition::DescriptorModel::load(BIOVISION_RECOGNITION_MODEL);
     biovision_recognition::ObjectMemory memory(model.bits(), model.id());
@@ -282,7 +282,7 @@ TEST_F(Persistence, KillDuringSavesLosesNothingAcknowledgedAndLeavesNoDebris)
   std::uniform_int_distribution<int> delay_ms(150, 1200);
   std::set<std::string> acknowledged;
   int kills = 0, temporaries_left = 0, planted = 0, counter = 0;
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(40);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(32);
   while (kills < 20 && std::chrono::steady_clock::now() < deadline)
   {
     auto node = start("kill_" + std::to_string(kills) + ".log");
@@ -294,8 +294,10 @@ TEST_F(Persistence, KillDuringSavesLosesNothingAcknowledgedAndLeavesNoDebris)
     EXPECT_TRUE(present.count("seed_0") && present.count("seed_59")) << "the seeded objects are gone";
     EXPECT_TRUE(filesStartingWith(dir_, "objects.bin.tmp.").empty())
         << "temporaries of killed saves remain after start " << kills;
-    // Learn in a loop; kill -9 at a random moment, most of the time in the middle of a save.
+    // Learn in a loop and kill -9: in even rounds at a random moment; in odd rounds, once a learn of the
+    // round is acknowledged, the moment the next save's temporary appears (in the middle of writing it).
     std::atomic<bool> killed{false};
+    std::atomic<int> round_acks{0};
     std::mutex ack_mutex;
     std::thread learner([&] {
       while (!killed)
@@ -306,15 +308,23 @@ TEST_F(Persistence, KillDuringSavesLosesNothingAcknowledgedAndLeavesNoDebris)
         {
           std::lock_guard<std::mutex> lock(ack_mutex);
           acknowledged.insert(label);
+          ++round_acks;
         }
       }
     });
-    std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(rng)));
+    const std::string debris = memory_file_ + ".tmp." + std::to_string(node->pid());
+    if (kills % 2 == 0)
+      std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(rng)));
+    else
+    {
+      const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(4);
+      while (std::chrono::steady_clock::now() < until && (round_acks == 0 || !fs::exists(debris)))
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
     node->kill(SIGKILL);
     killed = true;
     learner.join();
     ++kills;
-    const std::string debris = memory_file_ + ".tmp." + std::to_string(node->pid());
     if (fs::exists(debris))
       ++temporaries_left;
     else
@@ -340,7 +350,8 @@ TEST_F(Persistence, KillDuringSavesLosesNothingAcknowledgedAndLeavesNoDebris)
             << " kills landed in a save and left its temporary, " << planted
             << " more temporaries planted for kills that missed; all removed at the next start" << std::endl;
   EXPECT_GE(kills, 8);
-  EXPECT_GE(acknowledged.size(), 10u);
+  EXPECT_GE(acknowledged.size(), 8u);
+  EXPECT_GE(temporaries_left, 1) << "no kill landed inside a save";
 }
 
 // A refused memory is kept aside under a timestamped name — a second refusal keeps the first copy — the

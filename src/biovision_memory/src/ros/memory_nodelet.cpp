@@ -147,7 +147,7 @@ void MemoryNodelet::onInitNodelet()
   }
   catch (const std::exception& e)  // invalid_argument, DatabaseError
   {
-    NODELET_FATAL("%s", e.what());  // a refused database or bad parameters: do not run with a wrong memory
+    // A refused database or bad parameters: do not run with a wrong memory (LazyNodelet logs it as FATAL).
     throw;
   }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <stdexcept>
 
 #include <biovision_msgs/RecognizedObjectArray.h>
 #include <cv_bridge/cv_bridge.h>
@@ -33,8 +34,8 @@ void RecognitionNodelet::onInitNodelet()
   pnh.param<std::string>("memory_file", memory_file_, "");
   pnh.param("max_input_age", max_input_age_, 0.5);
 
-  // Without a descriptor model the node cannot do anything: refuse to start rather than run blind, and say
-  // why (the nodelet loader alone would exit with status 1 and no word).
+  // Without a descriptor model the node cannot do anything: refuse to start rather than run blind
+  // (LazyNodelet logs the reason as FATAL; the nodelet loader alone would exit 1 without a word).
   std::shared_ptr<const V1Descriptor> descriptor;
   try
   {
@@ -42,8 +43,7 @@ void RecognitionNodelet::onInitNodelet()
   }
   catch (const std::exception& e)
   {
-    NODELET_FATAL("recognition: cannot start: descriptor model (~model_file) refused: %s", e.what());
-    throw;
+    throw std::runtime_error(std::string("descriptor model (~model_file) refused: ") + e.what());
   }
   model_id_ = descriptor->model().id();
   recognizer_ = std::make_unique<ObjectRecognizer>(descriptor, ObjectRecognizer::Parameters());

@@ -1,11 +1,15 @@
 #include "biovision_common/atomic_file.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
+#include <sys/types.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
 
 namespace biovision_common
@@ -44,6 +48,81 @@ void writeFileAtomically(const std::string& path, const void* data, size_t size)
     ::unlink(tmp.c_str());
     throw FileError("cannot replace " + path + ": " + why);
   }
+}
+
+namespace
+{
+// A process with this id exists (it may belong to another user: EPERM still means it runs).
+bool processRuns(long pid)
+{
+  if (pid <= 0 || pid > 0x3fffffff)
+    return false;
+  return ::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM;
+}
+}  // namespace
+
+std::vector<std::string> removeStaleTemporaries(const std::string& path)
+{
+  namespace fs = std::filesystem;
+  std::vector<std::string> removed;
+  const fs::path target(path);
+  const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  const std::string prefix = target.filename().string() + ".tmp.";
+  std::error_code error;
+  for (const auto& entry : fs::directory_iterator(folder, error))
+  {
+    const std::string name = entry.path().filename().string();
+    if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0)
+      continue;
+    const std::string digits = name.substr(prefix.size());
+    if (digits.size() > 10 || digits.find_first_not_of("0123456789") != std::string::npos)
+      continue;  // not one of ours
+    const long pid = std::stol(digits);
+    if (pid == static_cast<long>(::getpid()) || processRuns(pid))
+      continue;  // a write in progress
+    std::error_code remove_error;
+    if (fs::remove(entry.path(), remove_error))
+      removed.push_back(entry.path().string());
+  }
+  std::sort(removed.begin(), removed.end());
+  return removed;
+}
+
+bool moveWithoutOverwriting(const std::string& from, const std::string& to)
+{
+  if (::renameat2(AT_FDCWD, from.c_str(), AT_FDCWD, to.c_str(), RENAME_NOREPLACE) == 0)
+    return true;
+  if (errno == EEXIST)
+    return false;
+  if (errno != EINVAL && errno != ENOSYS && errno != ENOTSUP)
+    throw FileError("cannot move " + from + " to " + to + ": " + std::strerror(errno));
+  // The file system cannot rename without replacing: a hard link fails on an existing name too.
+  if (::link(from.c_str(), to.c_str()) != 0)
+  {
+    if (errno == EEXIST)
+      return false;
+    throw FileError("cannot move " + from + " to " + to + ": " + std::strerror(errno));
+  }
+  if (::unlink(from.c_str()) != 0)
+    throw FileError("moved " + from + " to " + to + " but cannot remove the original: " + std::strerror(errno));
+  return true;
+}
+
+std::string keepAside(const std::string& path, const std::string& tag)
+{
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  ::gmtime_r(&now, &utc);
+  char stamp[32];
+  std::strftime(stamp, sizeof(stamp), "%Y%m%dT%H%M%SZ", &utc);
+  const std::string base = path + "." + tag + "-" + stamp;
+  for (int n = 1; n < 10000; ++n)
+  {
+    const std::string candidate = n == 1 ? base : base + "-" + std::to_string(n);
+    if (moveWithoutOverwriting(path, candidate))
+      return candidate;
+  }
+  throw FileError("cannot keep " + path + " aside: 9999 copies named " + base + "-N exist already");
 }
 
 std::vector<std::string> listDirectory(const std::string& directory)

@@ -1,9 +1,11 @@
 #include <gtest/gtest.h>
 
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 
@@ -122,6 +124,64 @@ TEST(AtomicFile, ListDirectorySortsAndSkipsHiddenEntries)
     writeFileAtomically(dir + "/" + name, std::string("x"));
   EXPECT_EQ(listDirectory(dir), (std::vector<std::string>{"a", "b"}));
   EXPECT_TRUE(listDirectory(dir + "/missing").empty());
+}
+
+// Issue 23 item 3: kill -9 during a save leaves `<file>.tmp.<pid>` behind; they must not pile up.
+TEST(AtomicFile, RemovesTemporariesOfDeadProcessesOnly)
+{
+  const std::string dir = tempPath("stale");
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string path = dir + "/memory.bin";
+  // A process that ran and is gone: its pid is free (reuse within this test is practically impossible).
+  const pid_t child = ::fork();
+  if (child == 0)
+    ::_exit(0);
+  ASSERT_GT(child, 0);
+  ::waitpid(child, nullptr, 0);
+  const std::string dead = path + ".tmp." + std::to_string(child);
+  const std::string alive = path + ".tmp." + std::to_string(::getppid());
+  const std::string own = path + ".tmp." + std::to_string(::getpid());
+  const std::string foreign = path + ".tmp.notapid";
+  const std::string other = dir + "/other.bin.tmp." + std::to_string(child);
+  for (const auto& f : {dead, alive, own, foreign, other})
+    writeBytes(f, {1, 2, 3});
+  const auto removed = removeStaleTemporaries(path);
+  EXPECT_EQ(removed, std::vector<std::string>{dead});
+  EXPECT_FALSE(std::filesystem::exists(dead));
+  for (const auto& f : {alive, own, foreign, other})
+    EXPECT_TRUE(std::filesystem::exists(f)) << f;
+  // A bare file name (the current folder) and a missing folder do not throw.
+  EXPECT_TRUE(removeStaleTemporaries(dir + "/missing/memory.bin").empty());
+  std::filesystem::remove_all(dir);
+}
+
+// Issue 23 item 2: a second refusal must not overwrite the copy kept from the first.
+TEST(AtomicFile, KeepAsideNeverOverwritesAnEarlierCopy)
+{
+  const std::string dir = tempPath("aside");
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string path = dir + "/memory.bin";
+  std::vector<std::string> kept;
+  for (uint8_t i = 0; i < 3; ++i)  // three refusals within the same second
+  {
+    writeBytes(path, {i});
+    kept.push_back(keepAside(path));
+    EXPECT_FALSE(std::filesystem::exists(path));
+  }
+  for (uint8_t i = 0; i < 3; ++i)
+  {
+    EXPECT_EQ(kept[i].rfind(path + ".refused-", 0), 0u) << kept[i];
+    EXPECT_EQ(fileBytes(kept[i]), std::vector<uint8_t>{i}) << kept[i];
+  }
+  EXPECT_NE(kept[0], kept[1]);
+  EXPECT_NE(kept[1], kept[2]);
+  writeBytes(path, {7});
+  EXPECT_FALSE(moveWithoutOverwriting(path, kept[0]));
+  EXPECT_EQ(fileBytes(kept[0]), std::vector<uint8_t>{0});
+  EXPECT_THROW(keepAside(dir + "/missing.bin"), FileError);
+  std::filesystem::remove_all(dir);
 }
 
 int main(int argc, char** argv)

@@ -13,6 +13,9 @@
 
 #include <sqlite3.h>
 
+#include "biovision_common/atomic_file.hpp"
+#include "biovision_common/object_label.hpp"
+
 namespace biovision_memory
 {
 namespace
@@ -84,12 +87,20 @@ MemoryDatabase::MemoryDatabase(const std::string& path, const Options& options) 
       close();
       if (!options_.start_empty_on_bad)
         throw;
-      moved_aside_ = path + ".bad-" + std::to_string(std::time(nullptr));
-      if (std::rename(path.c_str(), moved_aside_.c_str()) != 0)
-        throw DatabaseError(std::string(e.what()) + "; moving it aside failed: " + std::strerror(errno));
-      for (const char* suffix : {"-wal", "-shm"})
-        if (fileExists(path + suffix))
-          std::rename((path + suffix).c_str(), (moved_aside_ + suffix).c_str());
+      refusal_ = e.what();
+      try
+      {
+        // A timestamped name no later refusal overwrites; the journal files go with it.
+        moved_aside_ = biovision_common::keepAside(path);
+        for (const char* suffix : {"-wal", "-shm"})
+          if (fileExists(path + suffix) &&
+              !biovision_common::moveWithoutOverwriting(path + suffix, moved_aside_ + suffix))
+            throw biovision_common::FileError(moved_aside_ + suffix + " exists");
+      }
+      catch (const biovision_common::FileError& move)
+      {
+        throw DatabaseError(std::string(e.what()) + "; moving it aside failed: " + move.what());
+      }
       open();
       check();
     }
@@ -108,6 +119,17 @@ MemoryDatabase::~MemoryDatabase()
   close();
   if (lock_fd_ >= 0)
     ::close(lock_fd_);
+}
+
+void MemoryDatabase::checkValue(const std::string& row, const char* field, double value, double low, double high) const
+{
+  if (!std::isfinite(value) || value < low || value > high)
+  {
+    std::ostringstream m;
+    m << path_ << ": " << row << ": " << field << " = " << value << " is "
+      << (std::isfinite(value) ? "outside [" : "not finite [") << low << ", " << high << "]";
+    throw DatabaseError(m.str());
+  }
 }
 
 std::string MemoryDatabase::fail(const std::string& what) const
@@ -201,6 +223,10 @@ void MemoryDatabase::check()
       throw DatabaseError(m.str());
     }
   }
+  // Every stored value is checked here, so a bad row refuses the file (and start_empty_on_bad moves it
+  // aside) instead of reaching the memory.
+  loadCells();
+  loadObjects();
 }
 
 void MemoryDatabase::createSchema()
@@ -249,6 +275,12 @@ std::vector<LongTermMemory::Cell> MemoryDatabase::loadCells() const
     c.first_seen = sqlite3_column_double(s.get(), 4);
     c.last_seen = sqlite3_column_double(s.get(), 5);
     c.last_change = sqlite3_column_double(s.get(), 6);
+    const std::string row = "ltm_cells row (" + std::to_string(c.ix) + ", " + std::to_string(c.iy) + ")";
+    checkValue(row, "strength", sqlite3_column_double(s.get(), 2), 0, kMaxStrength);
+    checkValue(row, "observations", sqlite3_column_double(s.get(), 3), 0, 4294967295.0);
+    checkValue(row, "first_seen", c.first_seen, -kMaxTime, kMaxTime);
+    checkValue(row, "last_seen", c.last_seen, -kMaxTime, kMaxTime);
+    checkValue(row, "last_change", c.last_change, -kMaxTime, kMaxTime);
     cells.push_back(c);
   }
   if (rc != SQLITE_DONE)
@@ -276,6 +308,18 @@ std::vector<ObjectMemory::Object> MemoryDatabase::loadObjects() const
     o.first_seen = sqlite3_column_double(s.get(), 6);
     o.last_seen = sqlite3_column_double(s.get(), 7);
     o.last_change = sqlite3_column_double(s.get(), 8);
+    const std::string problem = biovision_common::ObjectLabel::problem(o.label);
+    if (!problem.empty())
+      throw DatabaseError(path_ + ": objects row '" + o.label.substr(0, 40) + "': " + problem);
+    const std::string row = "objects row '" + o.label + "'";
+    checkValue(row, "x", o.position.x(), -kMaxCoordinate, kMaxCoordinate);
+    checkValue(row, "y", o.position.y(), -kMaxCoordinate, kMaxCoordinate);
+    checkValue(row, "z", o.position.z(), -kMaxCoordinate, kMaxCoordinate);
+    checkValue(row, "strength", sqlite3_column_double(s.get(), 4), 0, kMaxStrength);
+    checkValue(row, "observations", sqlite3_column_double(s.get(), 5), 0, 4294967295.0);
+    checkValue(row, "first_seen", o.first_seen, -kMaxTime, kMaxTime);
+    checkValue(row, "last_seen", o.last_seen, -kMaxTime, kMaxTime);
+    checkValue(row, "last_change", o.last_change, -kMaxTime, kMaxTime);
     objects.push_back(o);
   }
   if (rc != SQLITE_DONE)

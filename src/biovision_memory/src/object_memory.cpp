@@ -5,6 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "biovision_common/object_label.hpp"
+
 namespace biovision_memory
 {
 void ObjectMemoryParameters::validate() const
@@ -37,8 +39,9 @@ void ObjectMemory::setParameters(const ObjectMemoryParameters& parameters)
 
 ObjectMemory::Sighting ObjectMemory::observe(const std::string& label, const Eigen::Vector3d& position, double stamp)
 {
-  if (label.empty())
-    throw std::invalid_argument("ObjectMemory::observe: empty label");
+  const std::string problem = biovision_common::ObjectLabel::problem(label);
+  if (!problem.empty())  // the rule the database checks on load: what is remembered can be loaded again
+    throw std::invalid_argument("ObjectMemory::observe: " + problem);
   if (!position.allFinite() || !std::isfinite(stamp))
     throw std::invalid_argument("ObjectMemory::observe: non-finite position or stamp for '" + label + "'");
   const ReinforcementRules& r = parameters_.rules;

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -292,4 +293,87 @@ int main(int argc, char** argv)
 {
   testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();
+}
+
+// Issue 23 item 4 for the database: a readable file with a value out of range is refused naming the row
+// and the field, not loaded into the memory.
+TEST_F(MemoryDatabaseTest, NonFiniteOrOutOfRangeValuesAreRefusedNamingTheField)
+{
+  struct Case
+  {
+    const char* sql;
+    const char* expected;
+  };
+  const std::vector<Case> cases{
+      {"UPDATE objects SET x = 1e400 WHERE label = 'cup'", "objects row 'cup': x = inf is not finite"},
+      {"UPDATE objects SET z = -5e7 WHERE label = 'cup'", "objects row 'cup': z = -5e+07 is outside"},
+      {"UPDATE objects SET strength = -3 WHERE label = 'cup'", "objects row 'cup': strength = -3"},
+      {"UPDATE objects SET last_seen = -1e400 WHERE label = 'cup'", "objects row 'cup': last_seen = -inf"},
+      {"UPDATE objects SET label = '' WHERE label = 'cup'", "objects row '': empty label"},
+      {"UPDATE objects SET label = replace(hex(zeroblob(2500)), '0', 'x') WHERE label = 'cup'", "label of 5000 bytes"},
+      {"UPDATE ltm_cells SET strength = 1000000 WHERE ix = 0", "strength = 1e+06 is outside"},
+      {"UPDATE ltm_cells SET first_seen = 1e400 WHERE ix = 0", "first_seen = inf is not finite"},
+  };
+  for (const auto& c : cases)
+  {
+    std::filesystem::remove(path_);
+    {
+      LongTermMemory ltm;
+      ObjectMemory om;
+      fill(ltm, om, 3);
+      MemoryDatabase db(path_, {});
+      db.save(ltm.takeChanges(), om.takeChanges());
+    }
+    rawSql(path_, c.sql);
+    const std::string e = errorOf(path_, {});
+    EXPECT_NE(e.find(c.expected), std::string::npos) << c.sql << " -> [" << e << "]";
+    EXPECT_NE(e.find(path_), std::string::npos) << e;
+    if (std::string(c.sql).find("ltm_cells") != std::string::npos)
+    {
+      EXPECT_NE(e.find("ltm_cells row (0, "), std::string::npos) << e;
+    }
+  }
+}
+
+// Issue 23 item 1 for the database: a label the loader would refuse is refused when remembering it.
+TEST_F(MemoryDatabaseTest, WhatIsRememberedLoadsAgain)
+{
+  ObjectMemory om;
+  EXPECT_THROW(om.observe(std::string(5000, 'x'), {1.0, 2.0, 0.5}, 1.0), std::invalid_argument);
+  EXPECT_THROW(om.observe("tab\there", {1.0, 2.0, 0.5}, 1.0), std::invalid_argument);
+  om.observe(std::string(256, 'y'), {1.0, 2.0, 0.5}, 1.0);  // at the limit
+  LongTermMemory ltm;
+  {
+    MemoryDatabase db(path_, {});
+    db.save(ltm.takeChanges(), om.takeChanges());
+  }
+  MemoryDatabase db(path_, {});
+  ASSERT_EQ(db.loadObjects().size(), 1u);
+  EXPECT_EQ(db.loadObjects()[0].label, std::string(256, 'y'));
+}
+
+// Issue 23 item 2 for the database: refusals within the same second keep every copy (the old
+// `<db>.bad-<unix time>` name was replaced by the second one), with the WAL beside it.
+TEST_F(MemoryDatabaseTest, ARefusedDatabaseIsKeptWithoutOverwritingAnEarlierCopy)
+{
+  MemoryDatabase::Options start_empty;
+  start_empty.start_empty_on_bad = true;
+  std::vector<std::string> kept;
+  for (int i = 0; i < 3; ++i)
+  {
+    std::ofstream(path_, std::ios::trunc) << std::string(8192, char('a' + i));  // not a database
+    MemoryDatabase db(path_, start_empty);
+    kept.push_back(db.movedAside());
+    EXPECT_EQ(kept.back().rfind(path_ + ".refused-", 0), 0u) << kept.back();
+    EXPECT_FALSE(db.refusal().empty());
+  }
+  for (int i = 0; i < 3; ++i)
+  {
+    std::ifstream in(kept[i]);
+    std::string content;
+    in >> content;
+    EXPECT_EQ(content, std::string(8192, char('a' + i))) << kept[i];
+  }
+  EXPECT_NE(kept[0], kept[1]);
+  EXPECT_NE(kept[1], kept[2]);
 }

@@ -1,9 +1,11 @@
 #include "biovision_recognition/object_memory.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 #include <stdexcept>
 
+#include "biovision_common/object_label.hpp"
 #include "biovision_common/payload_reader.hpp"
 #include "biovision_common/payload_writer.hpp"
 #include "biovision_common/stored_file.hpp"
@@ -26,15 +28,60 @@ ObjectMemory::ObjectMemory(int bits, std::string descriptor_id)
 {
 }
 
+void ObjectMemory::validateLabel(const std::string& label)
+{
+  const std::string problem = biovision_common::ObjectLabel::problem(label);
+  if (!problem.empty())
+    throw std::invalid_argument(problem);
+}
+
+void ObjectMemory::validateView(const ObjectView& view, int bits)
+{
+  validateLabel(view.label);
+  const std::string name = "view of '" + view.label + "': ";
+  if (view.size.width < 1 || view.size.width > kMaxViewSide || view.size.height < 1 || view.size.height > kMaxViewSide)
+    throw std::invalid_argument(name + "size " + std::to_string(view.size.width) + " x " +
+                                std::to_string(view.size.height) + " px is outside [1, " +
+                                std::to_string(kMaxViewSide) + "]");
+  if (view.codes.bits() != bits)
+    throw std::invalid_argument(name + "codes have " + std::to_string(view.codes.bits()) + " bits, the memory " +
+                                std::to_string(bits));
+  if (view.codes.size() != view.keypoints.size())
+    throw std::invalid_argument(name + std::to_string(view.keypoints.size()) + " keypoints but " +
+                                std::to_string(view.codes.size()) + " codes");
+  if (view.keypoints.size() > kMaxKeypointsPerView)
+    throw std::invalid_argument(name + std::to_string(view.keypoints.size()) + " keypoints, the limit is " +
+                                std::to_string(kMaxKeypointsPerView));
+  const auto check = [&](size_t i, const char* field, float value, double low, double high) {
+    if (!std::isfinite(value) || value < low || value > high)
+      throw std::invalid_argument(name + "keypoint " + std::to_string(i) + " " + field + " = " + std::to_string(value) +
+                                  " is " + (std::isfinite(value) ? "outside [" : "not finite [") + std::to_string(low) +
+                                  ", " + std::to_string(high) + "]");
+  };
+  for (size_t i = 0; i < view.keypoints.size(); ++i)
+  {
+    const auto& k = view.keypoints[i];
+    check(i, "x", k.x, 0.0, view.size.width);
+    check(i, "y", k.y, 0.0, view.size.height);
+    check(i, "wavelength", k.wavelength, 1e-3, 1e6);
+    check(i, "strength", k.strength, -1e30, 1e30);
+    check(i, "orientation", k.orientation, -2 * M_PI, 2 * M_PI);
+  }
+}
+
+void ObjectMemory::checkRoomFor(const ObjectView& view) const
+{
+  validateView(view, bits_);
+  if (views_.size() >= kMaxViews)
+    throw std::invalid_argument("the memory holds " + std::to_string(views_.size()) + " views, the limit");
+  if (viewCount(view.label) >= kMaxViewsPerObject)
+    throw std::invalid_argument("'" + view.label + "' has " + std::to_string(kMaxViewsPerObject) +
+                                " views, the limit per object: forget it first to learn it anew");
+}
+
 void ObjectMemory::addView(ObjectView view)
 {
-  if (view.label.empty())
-    throw std::invalid_argument("ObjectMemory: empty label");
-  if (view.codes.bits() != bits_)
-    throw std::invalid_argument("ObjectMemory: view codes have " + std::to_string(view.codes.bits()) +
-                                " bits, the memory " + std::to_string(bits_));
-  if (view.codes.size() != view.keypoints.size())
-    throw std::invalid_argument("ObjectMemory: keypoints and codes differ in count");
+  checkRoomFor(view);
   views_.push_back(std::move(view));
   rebuild();
 }
@@ -125,29 +172,38 @@ ObjectMemory ObjectMemory::load(const std::string& path, const std::string& expe
 {
   return StoredFile::load<ObjectMemory>(path, kMagic, kVersion, "object memory", [&](PayloadReader& r) {
     const int bits = r.get<int32_t>();
+    if (bits != 64 && bits != 128 && bits != 256)
+      throw std::runtime_error("code length " + std::to_string(bits) + " bits (64, 128 or 256)");
     const int words = BinaryCodeSet::wordsFor(bits);
     ObjectMemory memory(bits, r.getString());
     if (memory.descriptor_id_ != expected_descriptor_id)
       throw StoredFileError(path + ": built with descriptor model '" + memory.descriptor_id_ + "', this one is '" +
                             expected_descriptor_id + "'");
     const auto views = r.get<uint64_t>();
-    if (views > (1u << 24))
-      throw std::runtime_error("implausible view count");
+    if (views > kMaxViews)
+      throw std::runtime_error(std::to_string(views) + " views, the limit is " + std::to_string(kMaxViews));
     for (uint64_t i = 0; i < views; ++i)
     {
       ObjectView v;
-      v.label = r.getString();
+      // Read generously, then validate with the same rules as addView: the message names the field.
+      v.label = r.getString(uint64_t(1) << 20);
       v.size.width = r.get<int32_t>();
       v.size.height = r.get<int32_t>();
-      v.keypoints = r.getArray<biovision_v1::Keypoint>(1u << 22);
-      const auto words_read = r.getArray<uint64_t>(uint64_t(words) << 22);
+      v.keypoints = r.getArray<biovision_v1::Keypoint>(kMaxKeypointsPerView);
+      const auto words_read = r.getArray<uint64_t>(uint64_t(words) * kMaxKeypointsPerView);
       if (words_read.size() != v.keypoints.size() * words)
-        throw std::runtime_error("view '" + v.label + "' has " + std::to_string(v.keypoints.size()) +
+        throw std::runtime_error("view " + std::to_string(i) + " has " + std::to_string(v.keypoints.size()) +
                                  " keypoints but " + std::to_string(words_read.size() / words) + " codes");
       v.codes = BinaryCodeSet(bits, v.keypoints.size());
       std::copy(words_read.begin(), words_read.end(), v.codes.data());
-      if (v.label.empty() || v.size.width <= 0 || v.size.height <= 0)
-        throw std::runtime_error("view with an empty label or size");
+      try
+      {
+        memory.checkRoomFor(v);
+      }
+      catch (const std::invalid_argument& e)
+      {
+        throw std::runtime_error("view " + std::to_string(i) + ": " + e.what());
+      }
       memory.views_.push_back(std::move(v));
     }
     memory.rebuild();

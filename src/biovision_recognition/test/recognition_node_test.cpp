@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <mutex>
 
@@ -202,6 +203,57 @@ TEST_F(RecognitionNode, LearnsRecognisesListsAndForgetsARealObject)
   ASSERT_TRUE(ros::service::call("recognition/list_objects", list));
   EXPECT_EQ(list.response.labels, (std::vector<std::string>{"obj4"}));
   std::filesystem::remove(memory_file);
+}
+
+// Issue 23 item 6: an empty or zero-width box was taken as the whole image ("learned view 1"), and every
+// later scene was labelled with that object. Item 1: a 5,000-character label was accepted and saved, and
+// the next start refused the whole memory. Both are refused at learning, with a reason, storing nothing.
+TEST_F(RecognitionNode, LearnRefusesBoxesThatAreNotARegionAndLabelsTheMemoryCannotKeep)
+{
+  ros::AsyncSpinner spinner(1);
+  spinner.start();
+  ASSERT_TRUE(show(scene("obj1__0.png", {40, 60})));
+  struct Case
+  {
+    const char* what;
+    std::string label;
+    cv::Rect box;
+    const char* reason;
+  };
+  const std::vector<Case> cases{
+      {"empty box", "empty_box", cv::Rect(0, 0, 0, 0), "empty box"},
+      {"zero-width box", "zero_width", cv::Rect(40, 60, 0, 128), "empty box"},
+      {"zero-height box", "zero_height", cv::Rect(40, 60, 128, 0), "empty box"},
+      {"tiny box", "tiny", cv::Rect(40, 60, 3, 3), "under 8 px"},
+      {"box outside the image", "outside", cv::Rect(300, 200, 128, 128), "outside the latest image"},
+      {"5000-character label", std::string(5000, 'x'), cv::Rect(40, 60, 128, 128), "label of 5000 bytes"},
+      {"label with a newline", "two\nlines", cv::Rect(40, 60, 128, 128), "control character"},
+  };
+  for (const auto& c : cases)
+  {
+    biovision_msgs::LearnObject learn;
+    learn.request.label = c.label;
+    learn.request.box.x_offset = c.box.x;
+    learn.request.box.y_offset = c.box.y;
+    learn.request.box.width = c.box.width;
+    learn.request.box.height = c.box.height;
+    ASSERT_TRUE(ros::service::call("recognition/learn_object", learn)) << c.what;
+    EXPECT_FALSE(learn.response.success) << c.what << ": " << learn.response.message;
+    EXPECT_NE(learn.response.message.find(c.reason), std::string::npos) << c.what << ": " << learn.response.message;
+  }
+  biovision_msgs::ListObjects list;
+  ASSERT_TRUE(ros::service::call("recognition/list_objects", list));
+  for (const auto& c : cases)
+    EXPECT_EQ(std::count(list.response.labels.begin(), list.response.labels.end(), c.label), 0) << c.what;
+  // A scene without the object gets no label from anything learned above.
+  cv::Mat empty(240, 320, CV_8UC3);
+  cv::randu(empty, cv::Scalar::all(90), cv::Scalar::all(150));
+  cv::GaussianBlur(empty, empty, cv::Size(), 5.0);
+  const auto seen = show(empty);
+  ASSERT_TRUE(seen);
+  for (const auto& o : seen->objects)
+    for (const auto& c : cases)
+      EXPECT_NE(o.label, c.label) << c.what;
 }
 
 int main(int argc, char** argv)

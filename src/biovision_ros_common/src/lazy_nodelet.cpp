@@ -1,5 +1,7 @@
 #include "biovision_ros_common/lazy_nodelet.hpp"
 
+#include <exception>
+
 namespace biovision_ros_common
 {
 void LazyNodelet::onInit()
@@ -8,7 +10,16 @@ void LazyNodelet::onInit()
   {
     // Connection callbacks may fire during advertising; they wait until the outputs are all known.
     std::lock_guard<std::mutex> lock(connection_mutex_);
-    onInitNodelet();
+    try
+    {
+      onInitNodelet();
+    }
+    catch (const std::exception& e)
+    {
+      // The nodelet loader turns an exception here into exit status 1 without a word: say why.
+      NODELET_FATAL("cannot start: %s", e.what());
+      throw;
+    }
     initialised_ = true;
   }
   connectionChanged();

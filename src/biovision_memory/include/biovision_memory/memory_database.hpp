@@ -26,7 +26,7 @@ public:
 /// rtabmap keeps its long-term memory:
 ///  - WAL journal, synchronous=FULL: every committed transaction survives a kill -9 or a power cut;
 ///  - schema version in `PRAGMA user_version` (kSchemaVersion); a newer one is refused;
-///  - `PRAGMA integrity_check` on open; a corrupt file is refused;
+///  - `PRAGMA integrity_check` on open; a corrupt file is refused; so is a row with a value out of range;
 ///  - one writer: an exclusive flock() on `<path>.lock` (released by the kernel when the process dies,
 ///    so a killed node never leaves a stale lock); a second process opening the same database is refused;
 ///  - changes are written incrementally (save()) in one transaction each.
@@ -37,13 +37,21 @@ class MemoryDatabase
 {
 public:
   static constexpr int kSchemaVersion = 1;
+  /// Bounds of stored values, checked on open (a row outside them refuses the database, naming the row and
+  /// the field): strengths are the reinforcement rules' [0, max_strength ≤ 100000], positions are in the
+  /// map frame [m], times ROS time [s]; every value must be finite, every label follow
+  /// biovision_common::ObjectLabel (as when it was learned).
+  static constexpr double kMaxStrength = 100000;
+  static constexpr double kMaxCoordinate = 1e6;  ///< [m]
+  static constexpr double kMaxTime = 1e11;       ///< [s], about 3000 years
 
   struct Options
   {
     double cell_size = 0.1;  ///< the LTM's cell size [m]; a database written with another is refused
-    /// Refused (corrupt, newer schema, other cell size): false → throw; true → move the file aside to
-    /// `<path>.bad-<unix time>` and start with an empty memory (movedAside() names it). Never applies to
-    /// "in use by another process".
+    /// Refused (corrupt, newer schema, other cell size, a value out of range): false → throw; true → move
+    /// the file (and its -wal/-shm) aside to `<path>.refused-<UTC time>` — never overwriting an earlier
+    /// kept copy — and start with an empty memory (movedAside() names it, refusal() says why). Never
+    /// applies to "in use by another process".
     bool start_empty_on_bad = false;
     /// Upper bound of the file size in pages (PRAGMA max_page_count, 0 = SQLite's default), to keep the
     /// memory from filling a disk; a write beyond it fails like a full disk.
@@ -69,6 +77,8 @@ public:
   const std::string& path() const { return path_; }
   /// The file a bad database was moved to on open, or "".
   const std::string& movedAside() const { return moved_aside_; }
+  /// Why it was moved aside, or "".
+  const std::string& refusal() const { return refusal_; }
 
 private:
   void open();
@@ -77,12 +87,13 @@ private:
   void createSchema();
   void exec(const std::string& sql) const;
   std::string fail(const std::string& what) const;
+  void checkValue(const std::string& row, const char* field, double value, double low, double high) const;
 
   std::string path_;
   Options options_;
   int lock_fd_ = -1;
   sqlite3* db_ = nullptr;
-  std::string moved_aside_;
+  std::string moved_aside_, refusal_;
   std::map<std::pair<int, int>, std::optional<LongTermMemory::Cell>> pending_cells_;
   std::map<std::string, std::optional<ObjectMemory::Object>> pending_objects_;
 };

@@ -55,7 +55,8 @@ public:
   const ObjectMemoryParameters& parameters() const { return parameters_; }
 
   /// `label` seen at `position` (map frame) at `stamp` [s]. Applies rule (c) to it first. Throws
-  /// std::invalid_argument on an empty label or a non-finite position.
+  /// std::invalid_argument on a label biovision_common::ObjectLabel refuses (empty, over 256 bytes, control
+  /// characters) or a non-finite position.
   Sighting observe(const std::string& label, const Eigen::Vector3d& position, double stamp);
   /// Rule (c) for every object; returns the labels removed.
   std::vector<std::string> forget(double stamp);

@@ -14,6 +14,7 @@
 #include <tf2_eigen/tf2_eigen.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include "biovision_common/object_label.hpp"
 #include "biovision_ros_common/image_message_converter.hpp"
 
 namespace biovision_memory
@@ -134,8 +135,10 @@ void MemoryNodelet::onInitNodelet()
       options.start_empty_on_bad = settings_.start_empty_on_bad_database;
       database_ = std::make_unique<MemoryDatabase>(settings_.database, options);
       if (!database_->movedAside().empty())
-        NODELET_WARN("the memory database was unusable: moved to %s, starting with an empty memory",
-                     database_->movedAside().c_str());
+        diagnostics_.health().reportError(getName(),
+                                          "the memory database was refused, starting with an empty "
+                                          "memory; the refused file is kept as " +
+                                              database_->movedAside() + ": " + database_->refusal());
       ltm_->load(database_->loadCells());
       objects_->load(database_->loadObjects());
       NODELET_INFO("memory database %s: %zu map cells, %zu objects", settings_.database.c_str(), ltm_->cells().size(),
@@ -144,7 +147,7 @@ void MemoryNodelet::onInitNodelet()
   }
   catch (const std::exception& e)  // invalid_argument, DatabaseError
   {
-    NODELET_FATAL("%s", e.what());  // a refused database or bad parameters: do not run with a wrong memory
+    // A refused database or bad parameters: do not run with a wrong memory (LazyNodelet logs it as FATAL).
     throw;
   }
 
@@ -314,6 +317,12 @@ void MemoryNodelet::onObjects(const biovision_msgs::RecognizedObjectArrayConstPt
     const Eigen::Vector3d p(o.position.x, o.position.y, o.position.z);
     if (!o.has_position || !p.allFinite() || o.label.empty())
       continue;
+    const std::string problem = biovision_common::ObjectLabel::problem(o.label);
+    if (!problem.empty())
+    {
+      diagnostics_.health().reportError(getName(), "skipping a recognised object: " + problem);
+      continue;
+    }
     const Eigen::Vector3d in_odom = odom_from_camera * p;
     const Pose2D& map_from_odom = corrector_->mapFromOdom();
     const Eigen::Vector2d xy = map_from_odom.apply(in_odom.head<2>());
@@ -634,6 +643,14 @@ void MemoryNodelet::details(diagnostic_updater::DiagnosticStatusWrapper& s)
   {
     s.add("database changes pending", database_->pending());
     s.add("database last save error", last_save_error_.empty() ? std::string("none") : last_save_error_);
+    if (!database_->movedAside().empty())
+    {
+      // Stays visible (WARN) until the next start: somebody should look at the kept file.
+      s.add("refused database kept as", database_->movedAside());
+      s.add("refused because", database_->refusal());
+      s.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN,
+                     "memory database refused at start, kept as " + database_->movedAside());
+    }
   }
 }
 }  // namespace biovision_memory

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <stdexcept>
 
 #include <biovision_msgs/RecognizedObjectArray.h>
 #include <cv_bridge/cv_bridge.h>
@@ -11,6 +12,7 @@
 #include <ros/package.h>
 #include <sensor_msgs/image_encodings.h>
 
+#include "biovision_common/atomic_file.hpp"
 #include "biovision_common/stored_file.hpp"
 #include "biovision_ros_common/image_message_converter.hpp"
 #include "biovision_v1/input_image.hpp"
@@ -32,27 +34,22 @@ void RecognitionNodelet::onInitNodelet()
   pnh.param<std::string>("memory_file", memory_file_, "");
   pnh.param("max_input_age", max_input_age_, 0.5);
 
-  // Without a descriptor model the node cannot do anything: refuse to start rather than run blind.
-  const auto descriptor = std::make_shared<const V1Descriptor>(DescriptorModel::load(model_file));
+  // Without a descriptor model the node cannot do anything: refuse to start rather than run blind
+  // (LazyNodelet logs the reason as FATAL; the nodelet loader alone would exit 1 without a word).
+  std::shared_ptr<const V1Descriptor> descriptor;
+  try
+  {
+    descriptor = std::make_shared<const V1Descriptor>(DescriptorModel::load(model_file));
+  }
+  catch (const std::exception& e)
+  {
+    throw std::runtime_error(std::string("descriptor model (~model_file) refused: ") + e.what());
+  }
   model_id_ = descriptor->model().id();
   recognizer_ = std::make_unique<ObjectRecognizer>(descriptor, ObjectRecognizer::Parameters());
   memory_ = std::make_unique<ObjectMemory>(descriptor->model().bits(), model_id_);
-  if (!memory_file_.empty() && std::ifstream(memory_file_).good())
-  {
-    try
-    {
-      *memory_ = ObjectMemory::load(memory_file_, model_id_);
-      NODELET_INFO("recognition: loaded %zu views of %zu objects from %s", memory_->views().size(),
-                   memory_->labels().size(), memory_file_.c_str());
-    }
-    catch (const StoredFileError& e)
-    {
-      // Refused, not half-loaded: start empty, and keep the file for inspection (edits go elsewhere).
-      NODELET_ERROR("recognition: object memory refused, starting with an empty one: %s", e.what());
-      diagnostics_.health().reportError(getName(), std::string("object memory refused: ") + e.what());
-      memory_file_ += ".recovered";
-    }
-  }
+  if (!memory_file_.empty())
+    loadMemory();
 
   reconfigure_server_ = std::make_unique<dynamic_reconfigure::Server<RecognitionConfig>>(reconfigure_mutex_, pnh);
   reconfigure_server_->setCallback([this](RecognitionConfig& c, uint32_t level) { reconfigure(c, level); });
@@ -255,10 +252,51 @@ void RecognitionNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
   }
 }
 
+void RecognitionNodelet::loadMemory()
+{
+  // Saves killed mid-write (kill -9, power cut) leave their temporaries: remove those of dead processes.
+  for (const auto& stale : biovision_common::removeStaleTemporaries(memory_file_))
+    NODELET_WARN("recognition: removed %s, left by an interrupted save", stale.c_str());
+  if (!std::ifstream(memory_file_).good())
+    return;
+  try
+  {
+    *memory_ = ObjectMemory::load(memory_file_, model_id_);
+    NODELET_INFO("recognition: loaded %zu views of %zu objects from %s", memory_->views().size(),
+                 memory_->labels().size(), memory_file_.c_str());
+    return;
+  }
+  catch (const StoredFileError& e)
+  {
+    refusal_ = e.what();
+  }
+  // Refused, not half-loaded: keep the file for inspection under a name no later refusal overwrites, and
+  // start empty at the usual path, so what is learned from now on survives a restart.
+  try
+  {
+    refused_copy_ = biovision_common::keepAside(memory_file_);
+  }
+  catch (const std::exception& e)
+  {
+    // It cannot be moved: leave it untouched and save nothing over it (learning then says "not saved").
+    refused_copy_ = memory_file_ + " (left in place: " + e.what() + ")";
+    save_blocked_ = "the refused memory file could not be moved aside, so it is not overwritten";
+  }
+  diagnostics_.health().reportError(getName(),
+                                    "object memory refused, starting with an empty one; the refused file "
+                                    "is kept as " +
+                                        refused_copy_ + ": " + refusal_);
+}
+
 bool RecognitionNodelet::saveMemory(std::string& error)
 {
   if (memory_file_.empty())
     return true;
+  if (!save_blocked_.empty())
+  {
+    error = save_blocked_;
+    return false;
+  }
   try
   {
     memory_->save(memory_file_);
@@ -275,9 +313,13 @@ bool RecognitionNodelet::saveMemory(std::string& error)
 bool RecognitionNodelet::learn(biovision_msgs::LearnObject::Request& req, biovision_msgs::LearnObject::Response& res)
 {
   std::lock_guard<std::mutex> lock(state_mutex_);
-  if (req.label.empty())
+  try
   {
-    res.message = "empty label";
+    ObjectMemory::validateLabel(req.label);  // the memory's own rule: what is learned can be loaded again
+  }
+  catch (const std::invalid_argument& e)
+  {
+    res.message = std::string("refused: ") + e.what();
     return true;
   }
   if (last_gray_.empty())
@@ -288,7 +330,15 @@ bool RecognitionNodelet::learn(biovision_msgs::LearnObject::Request& req, biovis
   }
   try
   {
+    // The box must be a region of the image: an empty or zero-width box would be taken as the whole image,
+    // and every later scene would then be labelled with this object.
     const cv::Rect box(req.box.x_offset, req.box.y_offset, req.box.width, req.box.height);
+    const std::string why = boxProblem(req.box, last_gray_.size());
+    if (!why.empty())
+    {
+      res.message = "refused: " + why;
+      return true;
+    }
     ObjectView view = recognizer_->describe(last_gray_, box, req.label);
     if (static_cast<int>(view.keypoints.size()) < recognizer_->parameters().verifier.min_inliers)
     {
@@ -309,6 +359,22 @@ bool RecognitionNodelet::learn(biovision_msgs::LearnObject::Request& req, biovis
     res.message = e.what();
   }
   return true;
+}
+
+std::string RecognitionNodelet::boxProblem(const sensor_msgs::RegionOfInterest& box, const cv::Size& image)
+{
+  const std::string text = "box (x " + std::to_string(box.x_offset) + ", y " + std::to_string(box.y_offset) + ", " +
+                           std::to_string(box.width) + " x " + std::to_string(box.height) + " px)";
+  if (box.width == 0 || box.height == 0)
+    return "empty " + text +
+           ": give the object's region in the image, width and height >= " + std::to_string(kMinBoxSide) + " px";
+  if (box.width < kMinBoxSide || box.height < kMinBoxSide)
+    return text + " is under " + std::to_string(kMinBoxSide) + " px wide or high";
+  if (uint64_t(box.x_offset) + box.width > uint64_t(image.width) ||
+      uint64_t(box.y_offset) + box.height > uint64_t(image.height))
+    return text + " reaches outside the latest image (" + std::to_string(image.width) + " x " +
+           std::to_string(image.height) + " px)";
+  return "";
 }
 
 bool RecognitionNodelet::forget(biovision_msgs::ForgetObject::Request& req, biovision_msgs::ForgetObject::Response& res)
@@ -346,6 +412,13 @@ void RecognitionNodelet::details(diagnostic_updater::DiagnosticStatusWrapper& s)
   s.add("objects in memory", memory_->labels().size());
   s.add("library codes", memory_->codeCount());
   s.add("memory file", memory_file_.empty() ? std::string("(none: edits are not saved)") : memory_file_);
+  if (!refused_copy_.empty())
+  {
+    // Stays visible (WARN) until the next start: somebody should look at the kept file.
+    s.add("refused memory kept as", refused_copy_);
+    s.add("refused because", refusal_);
+    s.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN, "object memory refused at start, kept as " + refused_copy_);
+  }
   s.add("last regions processed", last_stats_.regions_processed);
   s.add("last regions skipped", last_stats_.regions_skipped);
   s.add("last keypoints", last_stats_.keypoints);

@@ -23,7 +23,8 @@ public:
   ~LazyNodelet() override = default;
 
 protected:
-  /// Called once by onInit(); advertise the outputs here.
+  /// Called once by onInit(); advertise the outputs here. An exception thrown here stops the nodelet and is
+  /// logged as FATAL with its what() (the nodelet loader itself exits 1 without a message).
   virtual void onInitNodelet() = 0;
   /// Subscribe to the inputs (first listener came, or ~lazy is false).
   virtual void subscribe() = 0;

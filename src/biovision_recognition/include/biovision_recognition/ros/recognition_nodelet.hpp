@@ -17,6 +17,7 @@
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
+#include <sensor_msgs/RegionOfInterest.h>
 #include <stereo_msgs/DisparityImage.h>
 
 #include "biovision_recognition/object_recognizer.hpp"
@@ -46,7 +47,13 @@ private:
   bool list(biovision_msgs::ListObjects::Request& req, biovision_msgs::ListObjects::Response& res);
   void reconfigure(RecognitionConfig& config, uint32_t level);
   void details(diagnostic_updater::DiagnosticStatusWrapper& status);
+  /// Loads ~memory_file after removing stale temporaries; a refused file is kept aside (never overwritten)
+  /// and the node starts empty, saying where the file went in the log and diagnostics.
+  void loadMemory();
   bool saveMemory(std::string& error);
+  /// Why a learn box cannot be used ("" when it can): zero-area, under kMinBoxSide, or outside the image.
+  static std::string boxProblem(const sensor_msgs::RegionOfInterest& box, const cv::Size& image);
+  static constexpr uint32_t kMinBoxSide = 8;  ///< [px]: the smallest region ObjectRecognizer::describe takes
   /// Box centre in the camera frame from the median disparity inside the box; false without data.
   bool position(const cv::Rect& box, const cv::Size& image_size, geometry_msgs::Point& point) const;
 
@@ -61,6 +68,8 @@ private:
   std::unique_ptr<ObjectRecognizer> recognizer_;
   std::unique_ptr<ObjectMemory> memory_;
   std::string memory_file_;
+  std::string refused_copy_, refusal_;  // where a memory refused at start went, and why
+  std::string save_blocked_;            // why nothing may be saved (a refused file that could not be moved)
   int max_regions_ = 3;
   double max_input_age_ = 0.5;
   cv::Mat last_gray_;

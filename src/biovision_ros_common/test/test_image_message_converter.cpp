@@ -254,6 +254,6 @@ TEST(ImageMessageConverter, BigEndianSixteenBitAndFloatDecodeLikeLittleEndian)
                             ImageMessageConverter::toCv(message(grey16, encoding, 0, false), Depth::Keep)),
               0.0)
         << encoding;
-  EXPECT_EQ(maxDifference(ImageMessageConverter::toCv(message(grey32, "32FC1", 2, true), Depth::Keep), grey32), 0.0);
+  EXPECT_EQ(maxDifference(ImageMessageConverter::toCv(message(grey32, "32FC1", 4, true), Depth::Keep), grey32), 0.0);
   EXPECT_EQ(maxDifference(ImageMessageConverter::toFloat32(message(grey32, "32FC1", 0, true)), grey32), 0.0);
 }

@@ -9,7 +9,8 @@ asserts for each: the node stays alive, nothing it publishes is non-finite or ou
 peak RSS (VmHWM from /proc). The launch file sets /use_sim_time; this driver publishes /clock itself so
 that it can make time jump back.
 
-~node: saliency | head_controller | biobin_disparity | v1_cells | recognition | sim_tools | topic_report
+~node: saliency | head_controller | base_controller | biobin_disparity | v1_cells | recognition | sim_tools |
+topic_report
 (sim_tools: still_camera and sim, and topic_report, started with bad parameters must exit with a message
 naming the parameter and no traceback or crash). docs/reliability.md lists what each node is tested against.
 """
@@ -262,11 +263,14 @@ class BadInputBattery(unittest.TestCase):
         """Feeds the oversized frame; the node's peak RSS may grow by at most budget_mb."""
         pid = self.pid()
         before = memory_kb(pid, "VmHWM")
-        self.expect_error(what, feed, seconds=20.0)
-        time.sleep(0.5)
-        grown = (memory_kb(pid, "VmHWM") - before) / 1024.0
-        rospy.loginfo("bad_input_battery: %s: peak RSS %.0f -> %.0f MB (+%.0f MB)", what, before / 1024.0,
-                      before / 1024.0 + grown, grown)
+        start = time.monotonic()
+        try:
+            self.expect_error(what, feed, seconds=20.0)
+        finally:
+            time.sleep(0.5)
+            grown = (memory_kb(pid, "VmHWM") - before) / 1024.0
+            rospy.loginfo("bad_input_battery: %s: peak RSS %.0f -> %.0f MB (+%.0f MB) in %.1f s", what,
+                          before / 1024.0, before / 1024.0 + grown, grown, time.monotonic() - start)
         self.assertLess(grown, budget_mb, "%s: peak RSS grew by %.0f MB (budget %d MB)" % (what, grown, budget_mb))
 
     def check_clock_jump(self, keep_output):
@@ -474,6 +478,94 @@ class HeadController(BadInputBattery):
     def test_time_jumping_back(self):
         self.assertTrue(wait_for(lambda: self.commands.count() > 5, 10.0), "no pan commands on good joint states")
         self.check_clock_jump(lambda: self.turns_to(0.3, "after a backward jump of ROS time"))
+
+
+class BaseController(BadInputBattery):
+    def setUp(self):
+        from biovision_msgs.msg import EgoMap
+        from geometry_msgs.msg import Twist
+        from nav_msgs.msg import Odometry
+        from std_msgs.msg import Float64
+        self.EgoMap, self.Odometry, self.Float64 = EgoMap, Odometry, Float64
+        self.diag = Diagnostics("base controller")
+        self.cmds = Probe("cmd_vel", Twist)
+        self.stm_pub = rospy.Publisher("memory/stm", EgoMap, queue_size=5)
+        self.odom_pub = rospy.Publisher("odom", Odometry, queue_size=5)
+        self.bearing_pub = rospy.Publisher("goal_bearing", Float64, queue_size=5)
+        self.wait_connected([self.stm_pub, self.odom_pub, self.bearing_pub])
+        self.bad_stm = None
+        self.bad_odom = None
+        self.stop = False
+        self.thread = threading.Thread(target=self.world_loop, daemon=True)
+        self.thread.start()  # fresh odometry and an empty short-term memory at 20 Hz
+
+    def tearDown(self):
+        self.stop = True
+        self.thread.join()
+
+    def stm(self, angles=None, distances=None):
+        angles = [math.radians(a) for a in range(-80, 81, 20)] if angles is None else angles
+        m = self.EgoMap(section_width=math.radians(20), section_angles=angles,
+                        obstacle_distance=distances if distances is not None else [INF] * len(angles),
+                        confidence=[1.0] * len(angles), max_range=3.0)
+        m.header.stamp = rospy.Time.now()
+        m.header.frame_id = "base_link"
+        return m
+
+    def odom(self, x=0.0):
+        o = self.Odometry()
+        o.header.stamp = rospy.Time.now()
+        o.header.frame_id = "odom"
+        o.pose.pose.position.x = x
+        o.pose.pose.orientation.w = 1.0
+        return o
+
+    def world_loop(self):
+        while not self.stop and not rospy.is_shutdown():
+            self.stm_pub.publish(self.bad_stm or self.stm())
+            self.odom_pub.publish(self.bad_odom or self.odom())
+            time.sleep(0.05)
+
+    def assert_commands_sane(self, since, what):
+        for c in self.cmds.since(since):
+            self.assertTrue(finite(c.linear.x, c.angular.z), "%s: cmd_vel %r" % (what, c))
+            self.assertLessEqual(abs(c.linear.x), 0.5 + 1e-6, "%s: linear %r beyond max_linear" % (what, c.linear.x))
+            self.assertLessEqual(abs(c.angular.z), 1.7453 + 1e-6, "%s: angular %r beyond max_angular" %
+                                 (what, c.angular.z))
+
+    def drives(self, what):
+        n = self.cmds.count()
+        self.bearing_pub.publish(self.Float64(0.3))
+        self.assertTrue(wait_for(lambda: any(abs(c.angular.z) > 1e-3 or c.linear.x > 1e-3 for c in self.cmds.since(n)),
+                                 5.0), "%s: the base does not drive to a valid bearing" % what)
+        self.assert_commands_sane(n, what)
+
+    def test_bad_goals_odometry_and_memory(self):
+        self.drives("good input")
+        for what, bearing in (("goal_bearing NaN", NAN), ("goal_bearing 1e30", 1e30), ("goal_bearing -Inf", -INF)):
+            n = self.cmds.count()
+            self.expect_error(what, lambda bearing=bearing: self.bearing_pub.publish(self.Float64(bearing)))
+            self.assert_commands_sane(n, what)
+            self.drives("good input after " + what)
+        nan_odom = self.odom()
+        nan_odom.pose.pose.position.x = NAN
+        cases = {"odom x NaN": ("odom", nan_odom),
+                 "an STM angle NaN": ("stm", self.stm(angles=[NAN] * 9)),
+                 "an STM angle 1e30": ("stm", self.stm(angles=[1e30] * 9)),
+                 "an STM with mismatched arrays": ("stm", self.stm(distances=[1.0, 2.0]))}
+        for what, (kind, msg) in cases.items():
+            n = self.cmds.count()
+
+            def feed(kind=kind, msg=msg):
+                if kind == "odom":
+                    self.bad_odom = msg
+                else:
+                    self.bad_stm = msg
+
+            self.expect_error(what, feed)
+            self.bad_odom = self.bad_stm = None
+            self.assert_commands_sane(n, what)
+            self.drives("good input after " + what)
 
 
 class BioBinDisparity(BadInputBattery):
@@ -701,7 +793,8 @@ class TopicReport(Tools):
             self.run_tool("biovision_monitor", "topic_report", params, words)
 
 
-CASES = {"saliency": Saliency, "head_controller": HeadController, "biobin_disparity": BioBinDisparity,
+CASES = {"saliency": Saliency, "head_controller": HeadController, "base_controller": BaseController,
+         "biobin_disparity": BioBinDisparity,
          "v1_cells": V1Cells, "recognition": Recognition, "sim_tools": SimTools, "topic_report": TopicReport}
 
 if __name__ == "__main__":

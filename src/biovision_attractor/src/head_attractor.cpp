@@ -1,6 +1,8 @@
 #include "biovision_attractor/head_attractor.hpp"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 #include <cmath>
 #include <limits>
 
@@ -49,6 +51,8 @@ std::vector<double> HeadAttractor::sectionAngles() const
 
 void HeadAttractor::setBehaviour(Behaviour b, double track_angle)
 {
+  if (b == Behaviour::kTrack && !std::isfinite(track_angle))
+    throw std::invalid_argument("HeadAttractor: track angle " + std::to_string(track_angle) + " is not finite");
   behaviour_ = b;
   track_angle_ = track_angle;
   if (b == Behaviour::kExplore)

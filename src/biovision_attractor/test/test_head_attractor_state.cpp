@@ -125,3 +125,16 @@ int main(int argc, char** argv)
   testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();
 }
+
+TEST(HeadAttractorState, ANonFiniteTrackAngleIsRefusedAndCannotFreezeTheAttractor)
+{
+  // Issue #23 item 8: track of a NaN direction, then explore, left the rate at exactly 0 for good.
+  HeadAttractor head{HeadAttractorParameters()};
+  for (double bad : {std::nan(""), HUGE_VAL, -HUGE_VAL})
+    EXPECT_THROW(head.setBehaviour(HeadAttractor::Behaviour::kTrack, bad), std::invalid_argument);
+  EXPECT_EQ(head.behaviour(), HeadAttractor::Behaviour::kExplore) << "a refused call must not change the behaviour";
+  head.setBehaviour(HeadAttractor::Behaviour::kExplore);
+  double pan = 0.0;
+  const auto commands = drive(head, {0.3}, 0.0, 30, pan);
+  EXPECT_GT(pan, 0.2) << "the head must turn towards a valid target 0.3 rad away";
+}

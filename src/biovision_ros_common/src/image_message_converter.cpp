@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 #include <map>
+#include <stdexcept>
 
 #include <opencv2/imgproc.hpp>
 
@@ -78,7 +80,7 @@ bool hostIsBigEndian()
 }
 
 /// Validates the header against the data and wraps the bytes (no copy); swaps bytes when needed (copy).
-cv::Mat wrap(const sensor_msgs::Image& m, const Format& f)
+cv::Mat wrap(const sensor_msgs::Image& m, const Format& f, size_t max_pixels)
 {
   const std::string what = std::to_string(m.width) + "x" + std::to_string(m.height) + " '" + m.encoding + "' image";
   if (m.width == 0 || m.height == 0)
@@ -86,6 +88,10 @@ cv::Mat wrap(const sensor_msgs::Image& m, const Format& f)
   if (size_t(m.width) * m.height > ImageMessageConverter::kMaxPixels)
     throw ImageConversionError(what + " exceeds " + std::to_string(ImageMessageConverter::kMaxPixels >> 20) +
                                " Mpx (damaged header?)");
+  if (size_t(m.width) * m.height > max_pixels)
+    throw ImageConversionError(what + " has " + std::to_string(size_t(m.width) * m.height) +
+                               " pixels, more than ~max_input_pixels = " + std::to_string(max_pixels) +
+                               " (downscale the camera or raise the parameter)");
   const size_t row_bytes = size_t(m.width) * CV_ELEM_SIZE(f.type);
   if (m.step < row_bytes)
     throw ImageConversionError(what + ": step " + std::to_string(m.step) + " is less than width x bytes per pixel (" +
@@ -153,7 +159,7 @@ const std::vector<std::string>& ImageMessageConverter::encodings()
   return names;
 }
 
-cv::Mat ImageMessageConverter::toCv(const sensor_msgs::Image& message, Depth depth)
+cv::Mat ImageMessageConverter::toCv(const sensor_msgs::Image& message, Depth depth, size_t max_pixels)
 {
   const auto it = formats().find(message.encoding);
   if (it == formats().end())
@@ -161,7 +167,15 @@ cv::Mat ImageMessageConverter::toCv(const sensor_msgs::Image& message, Depth dep
   const Format& f = it->second;
   if (f.layout == Layout::Float && depth == Depth::Eight)
     throw ImageConversionError("a 32FC1 image is a measurement, not a picture: expected a camera encoding");
-  cv::Mat m = wrap(message, f);
+  cv::Mat m = wrap(message, f, max_pixels);
+  if (f.layout == Layout::Float)
+  {
+    // NaN fails every comparison, Inf exceeds FLT_MAX: count what is not an ordinary number.
+    const int finite = cv::countNonZero(cv::abs(m) <= std::numeric_limits<float>::max());
+    if (finite != m.rows * m.cols)
+      throw ImageConversionError(std::to_string(m.rows * m.cols - finite) + " of " + std::to_string(m.rows * m.cols) +
+                                 " pixels of the 32FC1 image are NaN/Inf");
+  }
   cv::Mat out;
   switch (f.layout)
   {
@@ -189,17 +203,28 @@ cv::Mat ImageMessageConverter::toCv(const sensor_msgs::Image& message, Depth dep
   return depth == Depth::Eight ? toEightBits(out) : out;
 }
 
-cv::Mat ImageMessageConverter::toFloat32(const sensor_msgs::Image& message)
+cv::Mat ImageMessageConverter::toFloat32(const sensor_msgs::Image& message, size_t max_pixels)
 {
   const auto it = formats().find(message.encoding);
   if (it == formats().end() || (it->second.layout != Layout::Grey && it->second.layout != Layout::Float))
     throw ImageConversionError("expected a single-channel image (32FC1, 16UC1, mono16, 8UC1, mono8), got '" +
                                message.encoding + "'");
-  const cv::Mat m = wrap(message, it->second);
+  const cv::Mat m = wrap(message, it->second, max_pixels);
   if (m.type() == CV_32FC1)
     return m;
   cv::Mat out;
   m.convertTo(out, CV_32F);
   return out;
+}
+
+size_t ImageMessageConverter::maxInputPixels(const ros::NodeHandle& private_nh, size_t default_pixels)
+{
+  int value = static_cast<int>(default_pixels);
+  private_nh.param("max_input_pixels", value, value);
+  if (value < 1 || size_t(value) > kMaxPixels)
+    throw std::invalid_argument(private_nh.resolveName("max_input_pixels") + " = " + std::to_string(value) +
+                                " is outside [1, " + std::to_string(kMaxPixels) +
+                                "] (largest width x height processed)");
+  return size_t(value);
 }
 }  // namespace biovision_ros_common

@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
+#include <limits>
 
 #include <opencv2/imgproc.hpp>
 
@@ -200,4 +202,58 @@ int main(int argc, char** argv)
 {
   testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();
+}
+
+TEST(ImageMessageConverter, FramesAboveTheInputLimitAreRefusedBeforeAnyPixelIsRead)
+{
+  cv::Mat grey(30, 40, CV_8UC1, cv::Scalar(7));
+  const sensor_msgs::Image m = message(grey, "mono8");
+  EXPECT_EQ(ImageMessageConverter::toCv(m, Depth::Eight, 1200).cols, 40);  // exactly at the limit
+  try
+  {
+    ImageMessageConverter::toCv(m, Depth::Eight, 1199);
+    ADD_FAILURE() << "a frame above max_pixels was converted";
+  }
+  catch (const ImageConversionError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("max_input_pixels"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(ImageMessageConverter::toFloat32(m, 100), ImageConversionError);
+}
+
+TEST(ImageMessageConverter, FloatPicturesWithNanOrInfAreRefusedNamingTheCount)
+{
+  cv::Mat f(4, 5, CV_32FC1, cv::Scalar(0.5f));
+  EXPECT_NO_THROW(ImageMessageConverter::toCv(message(f, "32FC1"), Depth::Keep));
+  f.at<float>(1, 2) = std::numeric_limits<float>::quiet_NaN();
+  f.at<float>(3, 4) = std::numeric_limits<float>::infinity();
+  f.at<float>(0, 0) = -std::numeric_limits<float>::infinity();
+  for (bool big_endian : {false, true})
+  {
+    try
+    {
+      ImageMessageConverter::toCv(message(f, "32FC1", 0, big_endian), Depth::Keep);
+      ADD_FAILURE() << "NaN/Inf pixels converted silently";
+    }
+    catch (const ImageConversionError& e)
+    {
+      EXPECT_NE(std::string(e.what()).find("3 of 20 pixels"), std::string::npos) << e.what();
+    }
+  }
+  // A measurement image keeps its NaN ("no value").
+  EXPECT_TRUE(std::isnan(ImageMessageConverter::toFloat32(message(f, "32FC1")).at<float>(1, 2)));
+}
+
+TEST(ImageMessageConverter, BigEndianSixteenBitAndFloatDecodeLikeLittleEndian)
+{
+  cv::Mat grey16(6, 7, CV_16UC1), grey32(6, 7, CV_32FC1);
+  cv::randu(grey16, 0, 65535);
+  cv::randu(grey32, -1000.f, 1000.f);
+  for (const char* encoding : {"mono16", "16UC1"})
+    EXPECT_EQ(maxDifference(ImageMessageConverter::toCv(message(grey16, encoding, 0, true), Depth::Keep),
+                            ImageMessageConverter::toCv(message(grey16, encoding, 0, false), Depth::Keep)),
+              0.0)
+        << encoding;
+  EXPECT_EQ(maxDifference(ImageMessageConverter::toCv(message(grey32, "32FC1", 4, true), Depth::Keep), grey32), 0.0);
+  EXPECT_EQ(maxDifference(ImageMessageConverter::toFloat32(message(grey32, "32FC1", 0, true)), grey32), 0.0);
 }

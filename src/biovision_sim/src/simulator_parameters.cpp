@@ -35,8 +35,10 @@ void SimulatorParameters::validate() const
   require(std::isfinite(camera_rate) && camera_rate > 0, "camera_rate", camera_rate, "(0, inf) Hz");
   require(std::isfinite(physics_rate) && physics_rate >= camera_rate, "physics_rate", physics_rate,
           "[camera_rate = " + format(camera_rate) + ", inf) Hz");
-  require(width >= 32, "width", width, "[32, inf) px");
-  require(height >= 24, "height", height, "[24, inf) px");
+  // Upper bounds: a 4096-px side at supersample 4 renders 16384 px wide, which still fits cv::Mat; beyond it
+  // allocation failed with an uncaught cv::Exception (issue #23 item 13).
+  require(width >= 32 && width <= kMaxImageSide, "width", width, "[32, " + std::to_string(kMaxImageSide) + "] px");
+  require(height >= 24 && height <= kMaxImageSide, "height", height, "[24, " + std::to_string(kMaxImageSide) + "] px");
   require(horizontal_fov_deg > 1 && horizontal_fov_deg < 179, "horizontal_fov_deg", horizontal_fov_deg, "(1, 179) deg");
   require(supersample >= 1 && supersample <= 4, "supersample", supersample, "[1, 4]");
   require(std::isfinite(noise_sigma) && noise_sigma >= 0, "noise_sigma", noise_sigma, "[0, inf) grey levels");

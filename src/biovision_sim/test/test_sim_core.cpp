@@ -514,6 +514,9 @@ TEST(SimulatorParameters, EachBadFieldThrowsNamingIt)
       {[](SimulatorParameters& p) { p.physics_rate = 9; }, "physics_rate"},
       {[](SimulatorParameters& p) { p.width = 31; }, "width"},
       {[](SimulatorParameters& p) { p.height = 23; }, "height"},
+      {[](SimulatorParameters& p) { p.width = 1 << 30; }, "width"},  // crashed with a cv::Exception (issue #23)
+      {[](SimulatorParameters& p) { p.height = -5; }, "height"},
+      {[](SimulatorParameters& p) { p.width = SimulatorParameters::kMaxImageSide + 1; }, "width"},
       {[](SimulatorParameters& p) { p.horizontal_fov_deg = 1; }, "horizontal_fov_deg"},
       {[](SimulatorParameters& p) { p.horizontal_fov_deg = 179; }, "horizontal_fov_deg"},
       {[](SimulatorParameters& p) { p.supersample = 0; }, "supersample"},

@@ -78,6 +78,9 @@ public:
   /// std::invalid_argument on bad parameters, leaving the previous ones in place.
   void setParameters(const HeadAttractorParameters& parameters);
 
+  /// Switches the behaviour; `track_angle` [rad] is the direction kTrack follows. Throws
+  /// std::invalid_argument, keeping the current behaviour, for kTrack with a NaN/Inf angle: a non-finite
+  /// value never enters the state (it froze the attractor at rate 0, issue #23 item 8).
   void setBehaviour(Behaviour b, double track_angle = 0.0);
   Behaviour behaviour() const { return behaviour_; }
   static bool parseBehaviour(const std::string& name, Behaviour& out);

@@ -142,8 +142,8 @@ void BaseControllerNodelet::onStm(const biovision_msgs::EgoMapConstPtr& msg)
     s.distance = msg->obstacle_distance[i];
     s.confidence = msg->confidence.empty() ? 1.0 : msg->confidence[i];
     s.width = width;
-    if (!std::isfinite(s.angle) || std::isnan(s.distance) || std::isnan(s.confidence))
-      problem = "a NaN/Inf section angle or a NaN distance or confidence in sector " + std::to_string(i);
+    if (!std::isfinite(s.angle) || std::abs(s.angle) > M_PI || std::isnan(s.distance) || std::isnan(s.confidence))
+      problem = "a NaN/Inf or beyond-pi section angle or a NaN distance or confidence in sector " + std::to_string(i);
   }
   if (!problem.empty())
   {
@@ -234,8 +234,8 @@ void BaseControllerNodelet::onGoal(const geometry_msgs::PoseStampedConstPtr& msg
 
 void BaseControllerNodelet::onGoalBearing(const std_msgs::Float64ConstPtr& msg)
 {
-  if (!std::isfinite(msg->data))
-    return refuseGoal("a NaN/Inf bearing");
+  if (!std::isfinite(msg->data) || std::abs(msg->data) > 2 * M_PI)
+    return refuseGoal("a bearing of " + std::to_string(msg->data) + " rad (expected a finite angle within +-2 pi)");
   bool no_odom = false;
   {
     std::lock_guard<std::mutex> lock(mutex_);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
@@ -10,6 +11,8 @@
 #include <pluginlib/class_list_macros.hpp>
 #include <std_msgs/Float64.h>
 #include <urdf/model.h>
+
+#include "biovision_ros_common/input_check.hpp"
 
 namespace biovision_attractor
 {
@@ -172,11 +175,16 @@ void HeadControllerNodelet::reconfigure(HeadControllerConfig& config, uint32_t /
 
 void HeadControllerNodelet::onRegions(const biovision_msgs::SalientRegionArrayConstPtr& msg)
 {
+  // A region's direction must be a finite angle within ±pi and its saliency finite, else it is a damaged
+  // message; more than kMaxRegions regions are a flood: only the first (the most salient) are looked at.
   std::vector<SeenRegion> regions;
   size_t dropped = 0;
-  for (const auto& r : msg->regions)
+  const size_t looked_at = std::min(msg->regions.size(), kMaxRegions);
+  for (size_t i = 0; i < looked_at; ++i)
   {
-    if (!(std::isfinite(r.pan) && std::isfinite(r.tilt) && std::isfinite(r.peak_saliency)))
+    const auto& r = msg->regions[i];
+    if (!(std::isfinite(r.pan) && std::isfinite(r.tilt) && std::isfinite(r.peak_saliency) && std::abs(r.pan) <= M_PI &&
+          std::abs(r.tilt) <= M_PI))
       ++dropped;
     else if (r.area >= settings_.min_region_area)
       regions.push_back({r.pan, r.tilt, r.peak_saliency, static_cast<double>(r.area)});
@@ -190,47 +198,50 @@ void HeadControllerNodelet::onRegions(const biovision_msgs::SalientRegionArrayCo
   if (dropped > 0)
     diagnostics_.health().reportError(getName(), "dropped " + std::to_string(dropped) + " of " +
                                                      std::to_string(msg->regions.size()) +
-                                                     " salient regions with a NaN/Inf pan, tilt or peak saliency");
+                                                     " salient regions with a NaN/Inf or beyond-pi pan/tilt, or a "
+                                                     "NaN/Inf peak saliency");
+  if (msg->regions.size() > kMaxRegions)
+    diagnostics_.health().reportError(getName(), "a message of " + std::to_string(msg->regions.size()) +
+                                                     " salient regions: only the first " + std::to_string(kMaxRegions) +
+                                                     " are used");
 }
 
 void HeadControllerNodelet::onJointStates(const sensor_msgs::JointStateConstPtr& msg)
 {
-  // Arrays may be empty (a publisher that does not measure positions), else as long as the names.
-  if (!msg->position.empty() && msg->position.size() != msg->name.size())
+  std::map<std::string, double> found;
+  try
   {
-    diagnostics_.health().reportError(getName(), "ignoring joint_states with " + std::to_string(msg->name.size()) +
-                                                     " names and " + std::to_string(msg->position.size()) +
-                                                     " positions");
+    found = biovision_ros_common::InputCheck::jointPositions(*msg, {settings_.pan_joint, settings_.tilt_joint});
+  }
+  catch (const biovision_ros_common::InputError& e)
+  {
+    diagnostics_.health().reportError(getName(), std::string("ignoring ") + e.what());
     return;
   }
-  std::string bad_joint;
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (auto it = found.find(settings_.pan_joint); it != found.end())
   {
-    std::lock_guard<std::mutex> lock(mutex_);
-    for (size_t i = 0; i < msg->position.size(); ++i)
-    {
-      const bool pan = msg->name[i] == settings_.pan_joint, tilt = msg->name[i] == settings_.tilt_joint;
-      if ((pan || tilt) && !std::isfinite(msg->position[i]))
-        bad_joint = msg->name[i];
-      else if (pan)
-      {
-        pan_ = msg->position[i];
-        joints_received_ = ros::Time::now();
-      }
-      else if (tilt)
-        tilt_ = msg->position[i];
-    }
+    pan_ = it->second;
+    joints_received_ = ros::Time::now();
   }
-  if (!bad_joint.empty())
-    diagnostics_.health().reportError(getName(), "ignoring a NaN/Inf position of " + bad_joint + " in joint_states");
+  if (auto it = found.find(settings_.tilt_joint); it != found.end())
+    tilt_ = it->second;
 }
 
 void HeadControllerNodelet::onCameraInfo(const sensor_msgs::CameraInfoConstPtr& msg)
 {
-  if (msg->P[0] > 0 && msg->width > 0)  // else uncalibrated (REP-104): keep the current field of view
+  try
   {
-    std::lock_guard<std::mutex> lock(mutex_);
-    half_fov_ = std::atan(0.5 * msg->width / msg->P[0]);
+    biovision_ros_common::InputCheck::cameraInfo(*msg);
   }
+  catch (const biovision_ros_common::InputError& e)
+  {
+    diagnostics_.health().reportError(getName(),
+                                      std::string("ignoring ") + e.what() + " (keeping the current field of view)");
+    return;
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  half_fov_ = std::atan(0.5 * msg->width / msg->P[0]);
 }
 
 bool HeadControllerNodelet::onSetMode(biovision_msgs::SetHeadMode::Request& req,
@@ -251,15 +262,24 @@ bool HeadControllerNodelet::onSetMode(biovision_msgs::SetHeadMode::Request& req,
     unsigned rank = 0;
     if (req.target.rfind("region:", 0) != 0 || !(std::istringstream(req.target.substr(7)) >> rank) ||
         !latest_regions_ || rank >= latest_regions_->regions.size() ||
-        !std::isfinite(latest_regions_->regions[rank].pan))
+        !std::isfinite(latest_regions_->regions[rank].pan) || std::abs(latest_regions_->regions[rank].pan) > M_PI)
     {
       res.success = false;
-      res.message = "track needs target 'region:<rank>' of a current salient region";
+      res.message = "track needs target 'region:<rank>' of a current salient region with a finite pan within +-pi";
       return true;
     }
     angle = latest_regions_->regions[rank].pan;
   }
-  attractor_->setBehaviour(behaviour, angle);
+  try
+  {
+    attractor_->setBehaviour(behaviour, angle);
+  }
+  catch (const std::invalid_argument& e)
+  {
+    res.success = false;
+    res.message = e.what();
+    return true;
+  }
   res.success = true;
   res.message = std::string("head mode ") + HeadAttractor::name(behaviour);
   return true;

@@ -33,6 +33,7 @@ void RecognitionNodelet::onInitNodelet()
                          ros::package::getPath("biovision_recognition") + "/models/v1_ldahash_128.bin");
   pnh.param<std::string>("memory_file", memory_file_, "");
   pnh.param("max_input_age", max_input_age_, 0.5);
+  max_input_pixels_ = biovision_ros_common::ImageMessageConverter::maxInputPixels(pnh);  // throws: fatal at start
 
   // Without a descriptor model the node cannot do anything: refuse to start rather than run blind
   // (LazyNodelet logs the reason as FATAL; the nodelet loader alone would exit 1 without a word).
@@ -129,7 +130,7 @@ bool RecognitionNodelet::position(const cv::Rect& box, const cv::Size& image_siz
   cv::Mat d;
   try
   {
-    d = biovision_ros_common::ImageMessageConverter::toFloat32(disparity_->image);
+    d = biovision_ros_common::ImageMessageConverter::toFloat32(disparity_->image, max_input_pixels_);
   }
   catch (const std::exception&)
   {
@@ -168,8 +169,8 @@ void RecognitionNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
   cv::Mat bgr, gray;
   try
   {
-    bgr = biovision_ros_common::ImageMessageConverter::toCv(*msg,
-                                                            biovision_ros_common::ImageMessageConverter::Depth::Keep);
+    bgr = biovision_ros_common::ImageMessageConverter::toCv(
+        *msg, biovision_ros_common::ImageMessageConverter::Depth::Keep, max_input_pixels_);
     gray = biovision_v1::InputImage(bgr).gray();
   }
   catch (const std::exception& ex)

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include <opencv2/core.hpp>
+#include <ros/node_handle.h>
 #include <sensor_msgs/Image.h>
 
 namespace biovision_ros_common
@@ -25,8 +26,11 @@ struct ImageConversionError : std::invalid_argument
 ///   raw:    bayer_{rggb,bggr,gbrg,grbg}{8,16} (debayered, edge-aware), yuv422 (UYVY) -> 3 channels, BGR
 ///   float:  32FC1 (only with Depth::Keep, or through toFloat32)
 /// Anything else throws, listing these. Checks, in order, each throwing ImageConversionError: width or
-/// height 0; more than kMaxPixels pixels; step < width × bytes per pixel; step not a whole number of
-/// channels; yuv422 of odd width; data shorter than step × height.
+/// height 0; more than `max_pixels` pixels (the node's ~max_input_pixels, see maxInputPixels(); at most
+/// kMaxPixels) — checked before any pixel is touched, so an oversized frame costs no more memory than its
+/// message; step < width × bytes per pixel; step not a whole number of channels; yuv422 of odd width; data
+/// shorter than step × height. toCv() also refuses a 32FC1 picture holding NaN/Inf pixels, naming how many
+/// (toFloat32() keeps them: in a measurement image NaN means "no value").
 /// Rows may be padded (step > width × bytes per pixel): the padding is skipped. Multi-byte pixels with
 /// is_bigendian different from this machine's are byte-swapped. When no conversion is needed the result
 /// shares the message's memory (zero copy): keep the message alive while using it.
@@ -34,6 +38,9 @@ class ImageMessageConverter
 {
 public:
   static constexpr size_t kMaxPixels = size_t(64) << 20;  ///< 64 Mpx: larger is a damaged header
+  /// Default of every image nodelet's ~max_input_pixels: 2 Mpx (1920x1080, 1600x1200 and 2048x1024 fit).
+  /// Measured: one 4000x3000 frame took biobin_disparity 9.2 GB and recognition 7.3 GB (issue #23).
+  static constexpr size_t kDefaultMaxInputPixels = size_t(2) << 20;
 
   enum class Depth
   {
@@ -42,10 +49,15 @@ public:
   };
 
   /// A picture for the vision front ends: BGR (3 channels) or grey (1 channel).
-  static cv::Mat toCv(const sensor_msgs::Image& message, Depth depth = Depth::Eight);
+  static cv::Mat toCv(const sensor_msgs::Image& message, Depth depth = Depth::Eight, size_t max_pixels = kMaxPixels);
 
   /// A single-channel measurement image (32FC1, 16UC1/mono16, 8UC1/mono8) as CV_32F of the raw values.
-  static cv::Mat toFloat32(const sensor_msgs::Image& message);
+  static cv::Mat toFloat32(const sensor_msgs::Image& message, size_t max_pixels = kMaxPixels);
+
+  /// Reads the node's ~max_input_pixels (int, default `default_pixels`): the largest width × height it
+  /// processes; larger frames are refused with an error (bounded memory and time per frame). Throws
+  /// std::invalid_argument naming the parameter unless it lies in [1, kMaxPixels].
+  static size_t maxInputPixels(const ros::NodeHandle& private_nh, size_t default_pixels = kDefaultMaxInputPixels);
 
   /// The encodings toCv() reads, for error messages and docs.
   static const std::vector<std::string>& encodings();

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
+#include <stdexcept>
 
 #include <biovision_msgs/SalientRegionArray.h>
 #include <cv_bridge/cv_bridge.h>
@@ -11,6 +13,7 @@
 #include <sensor_msgs/image_encodings.h>
 
 #include "biovision_ros_common/image_message_converter.hpp"
+#include "biovision_ros_common/input_check.hpp"
 #include "biovision_saliency/ros/saliency_config.hpp"
 
 namespace biovision_saliency
@@ -25,6 +28,17 @@ void SaliencyNodelet::onInitNodelet()
   pnh.param("pan_joint", pan_joint_, pan_joint_);
   pnh.param("tilt_joint", tilt_joint_, tilt_joint_);
   pnh.param("max_input_age", max_input_age_, 0.5);
+  try
+  {
+    max_input_pixels_ = biovision_ros_common::ImageMessageConverter::maxInputPixels(pnh);
+    if (!(max_input_age_ > 0.0))
+      throw std::invalid_argument("~max_input_age = " + std::to_string(max_input_age_) + " must be > 0 [s]");
+  }
+  catch (const std::invalid_argument& e)
+  {
+    NODELET_FATAL("%s", e.what());  // start-up configuration: fail loudly rather than run misconfigured
+    throw;
+  }
 
   reconfigure_server_ = std::make_unique<dynamic_reconfigure::Server<SaliencyConfig>>(reconfigure_mutex_, pnh);
   reconfigure_server_->setCallback([this](SaliencyConfig& c, uint32_t level) { reconfigure(c, level); });
@@ -92,25 +106,39 @@ void SaliencyNodelet::disparityCallback(const stereo_msgs::DisparityImageConstPt
 
 void SaliencyNodelet::infoCallback(const sensor_msgs::CameraInfoConstPtr& msg)
 {
+  try
+  {
+    biovision_ros_common::InputCheck::cameraInfo(*msg);
+  }
+  catch (const biovision_ros_common::InputError& e)
+  {
+    diagnostics_.health().reportError(getName(), std::string("ignoring ") + e.what());
+    return;
+  }
   std::lock_guard<std::mutex> lock(state_mutex_);
   info_ = msg;
 }
 
 void SaliencyNodelet::jointCallback(const sensor_msgs::JointStateConstPtr& msg)
 {
-  std::lock_guard<std::mutex> lock(state_mutex_);
-  for (size_t i = 0; i < msg->name.size() && i < msg->position.size(); ++i)
+  std::map<std::string, double> found;
+  try
   {
-    if (!std::isfinite(msg->position[i]))
-      continue;
-    if (msg->name[i] == pan_joint_)
-      pan_ = msg->position[i];
-    else if (msg->name[i] == tilt_joint_)
-      tilt_ = msg->position[i];
-    else
-      continue;
-    joints_stamp_ = msg->header.stamp;
+    found = biovision_ros_common::InputCheck::jointPositions(*msg, {pan_joint_, tilt_joint_});
   }
+  catch (const biovision_ros_common::InputError& e)
+  {
+    diagnostics_.health().reportError(getName(), std::string("ignoring ") + e.what());
+    return;
+  }
+  if (found.empty())
+    return;
+  std::lock_guard<std::mutex> lock(state_mutex_);
+  if (auto it = found.find(pan_joint_); it != found.end())
+    pan_ = it->second;
+  if (auto it = found.find(tilt_joint_); it != found.end())
+    tilt_ = it->second;
+  joints_stamp_ = msg->header.stamp;
 }
 
 bool SaliencyNodelet::resetInhibition(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res)
@@ -130,7 +158,8 @@ void SaliencyNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
   try
   {
     image_clock_.observe(msg->header.stamp);
-    const cv::Mat image = biovision_ros_common::ImageMessageConverter::toCv(*msg);
+    const cv::Mat image = biovision_ros_common::ImageMessageConverter::toCv(
+        *msg, biovision_ros_common::ImageMessageConverter::Depth::Eight, max_input_pixels_);
 
     // Optional inputs: used only when they are recent relative to this image.
     cv::Mat disparity;
@@ -140,7 +169,8 @@ void SaliencyNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
       const double age = std::abs((msg->header.stamp - disparity_->header.stamp).toSec());
       if (age <= max_input_age_)
       {
-        disparity = biovision_ros_common::ImageMessageConverter::toFloat32(disparity_->image).clone();
+        disparity =
+            biovision_ros_common::ImageMessageConverter::toFloat32(disparity_->image, max_input_pixels_).clone();
         disparity.setTo(-1.f, disparity < disparity_->min_disparity);  // stereo_image_proc's invalid marking
         channels += "+disparity";
       }
@@ -153,7 +183,7 @@ void SaliencyNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
       head.pan = pan_;
       head.tilt = tilt_;
     }
-    if (info_ && info_->P[0] > 0 && std::isfinite(info_->P[0]) && info_->width == msg->width)
+    if (info_ && info_->width == msg->width && info_->height == msg->height)  // checked in infoCallback
     {
       head.focal = info_->P[0];
       head.principal = cv::Point2d(info_->P[2], info_->P[6]);
@@ -172,6 +202,18 @@ void SaliencyNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
   }
   last_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   last_regions_ = result.regions.size();
+
+  // No non-finite or out-of-range angle leaves the node, whatever went into the pipeline.
+  size_t bad_angles = 0;
+  for (const SalientRegion& r : result.regions)
+    bad_angles += !(std::isfinite(r.pan) && std::isfinite(r.tilt) && std::abs(r.pan) <= M_PI &&
+                    std::abs(r.tilt) <= M_PI && std::isfinite(r.peak) && std::isfinite(r.mean));
+  if (bad_angles > 0)
+  {
+    diagnostics_.health().reportError(getName(), "dropping a frame: " + std::to_string(bad_angles) +
+                                                     " salient regions have a NaN/Inf or beyond-pi pan/tilt");
+    return;
+  }
 
   auto regions = boost::make_shared<biovision_msgs::SalientRegionArray>();
   regions->header = msg->header;

@@ -25,8 +25,9 @@ struct StillCameraParameters
   std::string file;                         ///< image file (cv::imread); required
   std::string frame_id = "camera_optical";  ///< frame of the image and camera_info
   double rate = 10.0;                       ///< publishing rate [Hz], (0, 1000]
-  int width = 0;                            ///< [px]; with height > 0 the image is resized, 0 = the file's
+  int width = 0;                            ///< [px], [1, kMaxSide]: the image is resized; both 0 = the file's
   int height = 0;                           ///< [px]; see width
+  static constexpr int kMaxSide = 4096;     ///< [px] largest width or height (a resize beyond crashed, issue #23)
   double horizontal_fov_deg = 43.0;         ///< horizontal field of view [deg], (1, 179)
   double baseline = 0.0;                    ///< [m], [0, 10); > 0 makes this the right camera of a rectified pair
 
@@ -52,6 +53,11 @@ struct StillCameraParameters
     require(p.horizontal_fov_deg > 1.0 && p.horizontal_fov_deg < 179.0, "horizontal_fov_deg", p.horizontal_fov_deg,
             "(1, 179) deg");
     require(p.baseline >= 0.0 && p.baseline < 10.0, "baseline", p.baseline, "[0, 10) m");
+    require(p.width >= 0 && p.width <= kMaxSide, "width", p.width, "[0, 4096] px");
+    require(p.height >= 0 && p.height <= kMaxSide, "height", p.height, "[0, 4096] px");
+    if ((p.width == 0) != (p.height == 0))
+      throw std::invalid_argument("parameters ~width = " + std::to_string(p.width) + " and ~height = " +
+                                  std::to_string(p.height) + ": give both (resize) or neither (the file's size)");
     return p;
   }
 };
@@ -92,6 +98,9 @@ int main(int argc, char** argv)
     cv::Mat image = cv::imread(p.file, cv::IMREAD_COLOR);
     if (image.empty())
       throw std::invalid_argument("cannot read image file '" + p.file + "' (~file)");
+    if (image.cols > StillCameraParameters::kMaxSide || image.rows > StillCameraParameters::kMaxSide)
+      throw std::invalid_argument("image file '" + p.file + "' is " + std::to_string(image.cols) + "x" +
+                                  std::to_string(image.rows) + ": larger than 4096 px a side; set ~width and ~height");
     if (p.width > 0 && p.height > 0)
       cv::resize(image, image, cv::Size(p.width, p.height), 0, 0, cv::INTER_AREA);
     // With ~baseline 0 the right camera of the pair is the left one: a single rectified camera.

@@ -13,6 +13,7 @@
 #include <stereo_msgs/DisparityImage.h>
 
 #include "biovision_ros_common/image_message_converter.hpp"
+#include "biovision_ros_common/input_check.hpp"
 #include "biovision_stereo/ros/bio_bin_config.hpp"
 #include "biovision_v1/wavelength_list.hpp"
 
@@ -23,11 +24,12 @@ namespace enc = sensor_msgs::image_encodings;
 namespace
 {
 // What BioBinMatcher reads (8-bit BGR or grey), naming the image in any conversion error.
-cv::Mat toMatcherInput(const sensor_msgs::Image& image, const char* which)
+cv::Mat toMatcherInput(const sensor_msgs::Image& image, const char* which, size_t max_pixels)
 {
   try
   {
-    return biovision_ros_common::ImageMessageConverter::toCv(image);
+    return biovision_ros_common::ImageMessageConverter::toCv(
+        image, biovision_ros_common::ImageMessageConverter::Depth::Eight, max_pixels);
   }
   catch (const biovision_ros_common::ImageConversionError& e)
   {
@@ -37,17 +39,14 @@ cv::Mat toMatcherInput(const sensor_msgs::Image& image, const char* which)
 
 void checkInfo(const sensor_msgs::CameraInfo& info, const sensor_msgs::Image& image, const char* which)
 {
-  const double fx = info.P[0];
-  if (!std::isfinite(fx) || fx <= 0.0)
-    throw std::invalid_argument(std::string(which) +
-                                " camera_info has no valid focal length (P[0] = " + std::to_string(fx) + ")");
-  for (double v : info.P)
-    if (!std::isfinite(v))
-      throw std::invalid_argument(std::string(which) + " camera_info projection matrix has NaN/Inf");
-  if (info.width != 0 && (info.width != image.width || info.height != image.height))
-    throw std::invalid_argument(std::string(which) + " camera_info is " + std::to_string(info.width) + "x" +
-                                std::to_string(info.height) + " but the image is " + std::to_string(image.width) + "x" +
-                                std::to_string(image.height));
+  try
+  {
+    biovision_ros_common::InputCheck::cameraInfo(info, image.width, image.height);
+  }
+  catch (const biovision_ros_common::InputError& e)
+  {
+    throw std::invalid_argument(std::string(which) + " " + e.what());
+  }
 }
 }  // namespace
 
@@ -62,6 +61,17 @@ void BioBinDisparityNodelet::onInitNodelet()
   pnh.param("approximate_sync", approximate, false);
   pnh.param("use_color", use_color_, true);
   pnh.param("queue_size", queue_size_, 5);
+  try
+  {
+    max_input_pixels_ = biovision_ros_common::ImageMessageConverter::maxInputPixels(pnh);
+    if (queue_size_ < 1)
+      throw std::invalid_argument("~queue_size = " + std::to_string(queue_size_) + " must be >= 1");
+  }
+  catch (const std::invalid_argument& e)
+  {
+    NODELET_FATAL("%s", e.what());  // start-up configuration: fail loudly rather than run misconfigured
+    throw;
+  }
   if (approximate)
   {
     approximate_sync_ = std::make_unique<message_filters::Synchronizer<ApproximatePolicy>>(
@@ -176,7 +186,9 @@ void BioBinDisparityNodelet::pairCallback(const sensor_msgs::ImageConstPtr& left
     if (!(model.baseline() > 0.0) || !std::isfinite(model.baseline()))
       throw std::invalid_argument("camera_info gives no positive baseline (right P[3] must be -fx * T)");
     const auto start = std::chrono::steady_clock::now();
-    result = matcher_->compute(toMatcherInput(*left, "left"), toMatcherInput(*right, "right"));
+    // Size first: an oversized pair is refused before either image is converted.
+    const cv::Mat left_image = toMatcherInput(*left, "left", max_input_pixels_);
+    result = matcher_->compute(left_image, toMatcherInput(*right, "right", max_input_pixels_));
     last_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
   catch (const std::exception& e)  // invalid_argument, cv::Exception
@@ -185,12 +197,22 @@ void BioBinDisparityNodelet::pairCallback(const sensor_msgs::ImageConstPtr& left
     return;
   }
 
+  // BioBin matches x_l - x_r; DisparityImage holds d = x_l - x_r - (cx_l - cx_r) (its definition, and what
+  // Z = f T / d needs). Where the adjusted value would be negative the point lies beyond infinity: invalid.
+  const double principal_offset = model.left().cx() - model.right().cx();
+  if (principal_offset != 0.0)
+  {
+    const cv::Mat invalid = result.disparity < std::max(0.f, static_cast<float>(principal_offset));
+    result.disparity -= static_cast<float>(principal_offset);
+    result.disparity.setTo(-1.f, invalid);
+  }
+
   auto msg = boost::make_shared<stereo_msgs::DisparityImage>();
   msg->header = left->header;
   msg->f = static_cast<float>(model.right().fx());
   msg->T = static_cast<float>(model.baseline());
   msg->min_disparity = 0.0f;
-  msg->max_disparity = static_cast<float>(result.max_disparity);
+  msg->max_disparity = static_cast<float>(result.max_disparity - principal_offset);
   msg->delta_d = matcher_->parameters().subpixel ? 1.0f / 16.0f : 1.0f;
   msg->valid_window.x_offset = 0;
   msg->valid_window.y_offset = 0;

@@ -25,6 +25,15 @@ void V1CellsNodelet::onInitNodelet()
   ros::NodeHandle& nh = getNodeHandle();
   ros::NodeHandle& pnh = getPrivateNodeHandle();
   it_ = std::make_unique<image_transport::ImageTransport>(nh);
+  try
+  {
+    max_input_pixels_ = biovision_ros_common::ImageMessageConverter::maxInputPixels(pnh);
+  }
+  catch (const std::invalid_argument& e)
+  {
+    NODELET_FATAL("%s", e.what());  // start-up configuration: fail loudly rather than run misconfigured
+    throw;
+  }
 
   // Parameters from YAML arrive through dynamic_reconfigure's server (it reads the private namespace).
   reconfigure_server_ = std::make_unique<dynamic_reconfigure::Server<V1CellsConfig>>(reconfigure_mutex_, pnh);
@@ -85,7 +94,7 @@ void V1CellsNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
     try
     {
       input = biovision_ros_common::ImageMessageConverter::toCv(
-          *msg, biovision_ros_common::ImageMessageConverter::Depth::Keep);
+          *msg, biovision_ros_common::ImageMessageConverter::Depth::Keep, max_input_pixels_);
       result = pipeline_->process(input, want_debug);
     }
     catch (const std::exception& e)  // ImageConversionError, invalid_argument, cv::Exception

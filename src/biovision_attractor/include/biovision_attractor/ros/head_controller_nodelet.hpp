@@ -30,6 +30,10 @@ namespace biovision_attractor
 /// In: `saliency/regions` (biovision_msgs/SalientRegionArray; regions of at least ~min_region_area px^2
 /// attract; regions with a NaN/Inf pan, tilt or peak are dropped with an ERROR), `joint_states`
 /// (~pan_joint, ~tilt_joint positions [rad]), `camera_info` (optional: the horizontal field of view).
+/// Bad input (issue #23): regions with a NaN/Inf or beyond-±pi pan/tilt, messages of more than kMaxRegions
+/// regions, joint_states that InputCheck::jointPositions refuses (NaN/Inf/huge, mismatched lengths) and
+/// camera_info that InputCheck::cameraInfo refuses (zero size, fx 0/NaN/Inf/tiny) are refused or cut with
+/// a throttled error and an ERROR diagnostic; no refused value enters the controller's state.
 /// Out: `<pan_joint>/command`, `<tilt_joint>/command` (std_msgs/Float64 [rad], never beyond the URDF's joint
 /// limits from `robot_description`), `attractor/head` (biovision_msgs/AttractorState), `/diagnostics`.
 /// Service: `head/set_mode` (biovision_msgs/SetHeadMode: explore, track with target "region:<rank>",
@@ -45,6 +49,9 @@ namespace biovision_attractor
 class HeadControllerNodelet : public nodelet::Nodelet
 {
 public:
+  /// Regions looked at per message (the most salient first); a longer message is reported as an ERROR.
+  static constexpr size_t kMaxRegions = 256;
+
   ~HeadControllerNodelet() override;
 
   /// `base` with every field the reconfigure config names (HeadAttractorParameters::namedDoubles/Bools)

@@ -72,6 +72,7 @@ private:
   std::string save_blocked_;            // why nothing may be saved (a refused file that could not be moved)
   int max_regions_ = 3;
   double max_input_age_ = 0.5;
+  size_t max_input_pixels_ = 0;  // ~max_input_pixels: larger images are refused (bounded memory per frame)
   cv::Mat last_gray_;
   biovision_msgs::SalientRegionArrayConstPtr regions_;
   stereo_msgs::DisparityImageConstPtr disparity_;

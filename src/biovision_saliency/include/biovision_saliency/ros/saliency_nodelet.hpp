@@ -30,6 +30,11 @@ namespace biovision_saliency
 /// the map degrades to the channels it has. Publishes `saliency/map` (32FC1, working resolution),
 /// `saliency/thresholded` (mono8) and `saliency/regions` (FoA order); subscribes only while one of them
 /// has a subscriber. Service `saliency/reset_inhibition` clears the IoR memory.
+/// Bad input (issue #23): an image larger than ~max_input_pixels, a camera_info that InputCheck::cameraInfo
+/// refuses (fx 0/NaN/Inf/tiny, NaN in P, zero size) or joint_states with a NaN/Inf/huge head joint or
+/// mismatched name/position lengths is refused with a throttled error and an ERROR diagnostic; the refused
+/// value is not used (the previous good one stays). A region whose pan/tilt is not finite and within ±pi is
+/// never published.
 class SaliencyNodelet : public biovision_ros_common::LazyNodelet
 {
 private:
@@ -59,6 +64,7 @@ private:
   ros::Time joints_stamp_;
   std::string pan_joint_ = "head_pan_joint", tilt_joint_ = "head_tilt_joint";
   double max_input_age_ = 0.5;
+  size_t max_input_pixels_ = 0;                            // ~max_input_pixels
   biovision_ros_common::ClockJumpGuard image_clock_{0.0};  // image stamps going back: motion and IoR restart
 
   boost::recursive_mutex reconfigure_mutex_;  // dynamic_reconfigure::Server takes a boost mutex; outlives it

@@ -33,6 +33,11 @@ namespace biovision_stereo
 /// (~approximate_sync); publishes stereo_msgs/DisparityImage on `disparity` with invalid pixels
 /// below min_disparity as stereo_image_proc does, and a mono8 `obstacle_mask` of pixels nearer than
 /// ~obstacle_distance.
+/// Disparity as stereo_msgs/DisparityImage defines it: d = x_l - x_r - (cx_l - cx_r), so Z = f T / d holds
+/// for every consumer (this repo's obstacle mask, saliency, memory, recognition) also when the rectified
+/// principal points differ; pixels whose adjusted disparity would be negative are marked invalid.
+/// Frames larger than ~max_input_pixels (width x height) are refused with an ERROR diagnostic, before any
+/// pixel is copied (bounded memory per frame).
 class BioBinDisparityNodelet : public biovision_ros_common::LazyNodelet
 {
 public:
@@ -62,6 +67,7 @@ private:
   image_transport::Publisher obstacle_pub_;
   bool use_color_ = true;
   int queue_size_ = 5;
+  size_t max_input_pixels_ = 0;  // ~max_input_pixels
 
   std::mutex matcher_mutex_;
   std::unique_ptr<BioBinMatcher> matcher_;

@@ -40,6 +40,7 @@ private:
   std::unique_ptr<image_transport::ImageTransport> it_;
   image_transport::Subscriber image_sub_;
   std::string input_topic_;
+  size_t max_input_pixels_ = 0;  // ~max_input_pixels: larger images are refused (bounded memory per frame)
   image_transport::Publisher debug_pub_;
   ros::Publisher keypoints_pub_;
 

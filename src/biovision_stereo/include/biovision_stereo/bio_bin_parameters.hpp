@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 namespace biovision_stereo
@@ -29,6 +30,17 @@ struct BioBinParameters
   bool subpixel = true;               ///< parabola through the winner's neighbours (beyond the thesis)
   bool left_right_check = true;       ///< invalidate pixels whose right-view disparity disagrees (beyond)
   double left_right_tolerance = 1.0;  ///< [input px]
+
+  /// Cost aggregation of the finest level (coarser levels keep the thesis' filter: their costs are the
+  /// ones fused into the next finer level). "iterative": the thesis' over-relaxed filter above.
+  /// "semi_global": beyond the thesis, semi-global path aggregation (SemiGlobalAggregation) of the
+  /// level's DoG-filtered, fused costs, with its own winner-take-all on the aggregated costs.
+  std::string aggregation = "iterative";
+  double sgm_p1 = 2.0;          ///< P1 [filtered cost units]: penalty of a disparity step of 1
+  double sgm_p2 = 8.0;          ///< P2 [filtered cost units]: penalty of a larger step (< sgm_p1 acts as sgm_p1)
+  double sgm_p2_barrier = 8.0;  ///< P2 at V1 line/edge events (depth edges sit on image edges); < sgm_p1 acts as sgm_p1
+  int sgm_paths = 8;            ///< 4 (horizontal, vertical) or 8 (and diagonal) path directions
+  static constexpr double kSgmCostScale = 8.0;  ///< 16-bit aggregation units per filtered cost unit
 
   /// Throws std::invalid_argument naming the offending field.
   void validate() const;

@@ -492,10 +492,10 @@ DisparityMap BioBinMatcher::compute(const cv::Mat& left_in, const cv::Mat& right
     }
     const int disparities = static_cast<int>(std::ceil(parameters_.max_disparity / sf)) + 1;
     // Line/edge barriers only where a step uses them (the finest level's semi-global aggregation does
-    // only when it lowers P2 there): the quadrature bank behind them is a third of the cells' time.
+    // only when it lowers P2 there): at the finest level that saves the quadrature bank's compute.
     const bool semi_global = s == 0 && parameters_.aggregation == "semi_global";
-    const bool need_barriers =
-        parameters_.line_edge_barriers && (!semi_global || parameters_.sgm_p2_barrier != parameters_.sgm_p2);
+    const bool need_barriers = parameters_.line_edge_barriers &&
+                               (!semi_global || parameters_.sgm_p2_barrier != parameters_.sgm_p2);
     cv::Mat barriers;
     CostVolume costs = levelCosts(s, l, r, disparities, need_barriers ? &barriers : nullptr);
     auto t = Clock::now();

@@ -54,7 +54,9 @@ TEST(ParameterFiles, FastModeYamlIsAValidOverlay)
   BioBinDisparityConfig config = BioBinDisparityConfig::__getDefault__();
   config.wavelengths = fast["wavelengths"].as<std::string>();
   config.max_disparity = fast["max_disparity"].as<int>();
+  config.aggregation = fast["aggregation"].as<std::string>();
   EXPECT_NO_THROW(toBioBinParameters(config).validate());
+  EXPECT_EQ(toBioBinParameters(config).aggregation, "iterative");
   EXPECT_EQ(toBioBinParameters(config).wavelengths, std::vector<double>{16.0});
 }
 

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -13,6 +14,7 @@
 #include "biovision_stereo/disparity_dog.hpp"
 #include "biovision_stereo/hamming.hpp"
 #include "biovision_stereo/pixel_descriptor.hpp"
+#include "biovision_stereo/semi_global_aggregation.hpp"
 #include "biovision_v1/end_stopped_cells.hpp"
 #include "biovision_v1/line_edge_detector.hpp"
 #include "biovision_v1/simple_cell_bank.hpp"
@@ -66,6 +68,7 @@ BioBinMatcher::BioBinMatcher(const BioBinParameters& parameters) : parameters_(p
   for (size_t s = 0; s < parameters_.wavelengths.size(); ++s)
   {
     odd_banks_.push_back(std::make_unique<biovision_v1::SimpleCellBank>(full));
+    spare_.emplace_back();
     barrier_banks_.push_back(std::make_unique<biovision_v1::SimpleCellBank>(gabor));
   }
 }
@@ -77,6 +80,11 @@ cv::Size BioBinMatcher::levelSize(cv::Size input, size_t level) const
   const double sf = parameters_.scaleFactor(level);
   return cv::Size(std::max(1, static_cast<int>(std::lround(input.width / sf))),
                   std::max(1, static_cast<int>(std::lround(input.height / sf))));
+}
+
+std::vector<cv::Mat> BioBinMatcher::oddResponses(size_t level, const cv::Mat& gray)
+{
+  return odd_banks_[level]->computeOdd(gray)[0];
 }
 
 CostVolume BioBinMatcher::levelCosts(size_t level, const cv::Mat& left, const cv::Mat& right, int disparities,
@@ -99,8 +107,8 @@ CostVolume BioBinMatcher::levelCosts(size_t level, const cv::Mat& left, const cv
   times_.prepare += msSince(t);
   t = Clock::now();
   // (c) odd simple cells -> rolling 256-bit descriptors.
-  const PixelDescriptorImage left_codes = PixelDescriptorImage::compute(odd_banks_[level]->computeOdd(left_gray)[0]);
-  const PixelDescriptorImage right_codes = PixelDescriptorImage::compute(odd_banks_[level]->computeOdd(right_gray)[0]);
+  const PixelDescriptorImage left_codes = PixelDescriptorImage::compute(oddResponses(level, left_gray));
+  const PixelDescriptorImage right_codes = PixelDescriptorImage::compute(oddResponses(level, right_gray));
   if (barriers)
   {
     // Line/edge events of the left image, on the bank's exact decimated grid, back at level size.
@@ -116,7 +124,9 @@ CostVolume BioBinMatcher::levelCosts(size_t level, const cv::Mat& left, const cv
   times_.cells += msSince(t);
   t = Clock::now();
   // (d) Hamming costs, (b) colour mask, modulation; one image row at a time, rows in parallel.
-  CostVolume costs(size, nd);
+  // The level's volume of the last frame: same shape, so no allocation (and no page faults) per frame.
+  CostVolume costs = std::move(spare_[level]);
+  costs.create(size, nd);  // every value is written below
   const int n_th = std::clamp(static_cast<int>(std::lround(std::log2(std::max(2.0, parameters_.max_disparity / sf)))),
                               1, nd);
   const float boost = static_cast<float>(1.0 + parameters_.kappa), damp = static_cast<float>(1.0 - parameters_.kappa);
@@ -125,51 +135,52 @@ CostVolume BioBinMatcher::levelCosts(size_t level, const cv::Mat& left, const cv
   cv::split(left_lab, left_planes);
   cv::split(right_lab, right_planes);
   cv::parallel_for_(cv::Range(0, h), [&](const cv::Range& rows) {
-    std::vector<std::uint16_t> sad(size_t(nd) * w), threshold(w);  // one type: the modulation vectorises
-    std::vector<int> smallest(n_th);
+    // Signed 16 bits (SAD <= 766): SSE2 has signed 16-bit min/max/compare, so the loops below vectorise
+    // on the baseline instruction set (unsigned ones did not).
+    std::vector<std::int16_t> sad(size_t(nd) * w), carry(w);
+    std::vector<std::vector<std::int16_t>> smallest(n_th, std::vector<std::int16_t>(w));
     for (int y = rows.start; y < rows.end; ++y)
     {
       const uchar *l0 = left_planes[0].ptr(y), *l1 = left_planes[1].ptr(y), *l2 = left_planes[2].ptr(y);
       const uchar *r0 = right_planes[0].ptr(y), *r1 = right_planes[1].ptr(y), *r2 = right_planes[2].ptr(y);
       for (int k = 0; k < nd; ++k)
       {
-        std::uint16_t* s = &sad[size_t(k) * w];
+        std::int16_t* s = &sad[size_t(k) * w];
         for (int x = 0; x < std::min(k, w); ++x)
           s[x] = kNoMatchSad;
         for (int x = k; x < w; ++x)
-          s[x] = static_cast<std::uint16_t>(std::abs(l0[x] - r0[x - k]) + std::abs(l1[x] - r1[x - k]) +
-                                            std::abs(l2[x] - r2[x - k]));
+          s[x] = static_cast<std::int16_t>(std::abs(l0[x] - r0[x - k]) + std::abs(l1[x] - r1[x - k]) +
+                                           std::abs(l2[x] - r2[x - k]));
         Hamming::row(left_codes.row(y), right_codes.row(y), w, k, kMaxHamming, costs.slice(k).ptr<float>(y));
       }
-      // BT = the N_th smallest SAD of each pixel: a sorted list of the N_th smallest seen so far.
-      // (A branch-free compare-exchange version that vectorises over x was measured slower: most values
-      // leave at the first comparison here.)
-      for (int x = 0; x < w; ++x)
+      // BT = the N_th smallest SAD of each pixel: a compare-exchange chain over x, smallest[0..n_th) kept
+      // sorted per pixel, each disparity's SAD carried down the chain (exact, ties included).
+      for (auto& row : smallest)
+        std::fill(row.begin(), row.end(), std::numeric_limits<std::int16_t>::max());
+      for (int k = 0; k < nd; ++k)
       {
-        int count = 0;
-        for (int k = 0; k < nd; ++k)
+        const std::int16_t* s = &sad[size_t(k) * w];
+        std::copy(s, s + w, carry.begin());
+        for (int i = 0; i < n_th; ++i)
         {
-          const int v = sad[size_t(k) * w + x];
-          if (count == n_th && v >= smallest[n_th - 1])
-            continue;
-          int i = count < n_th ? count++ : n_th - 1;
-          while (i > 0 && smallest[i - 1] > v)
+          std::int16_t* m = smallest[i].data();
+          std::int16_t* v = carry.data();
+          for (int x = 0; x < w; ++x)
           {
-            smallest[i] = smallest[i - 1];
-            --i;
+            const std::int16_t lo = std::min(m[x], v[x]);
+            v[x] = std::max(m[x], v[x]);
+            m[x] = lo;
           }
-          smallest[i] = v;
         }
-        threshold[x] = static_cast<std::uint16_t>(smallest[count - 1]);
       }
       // phi = 1 where SAD <= BT: M (1 - kappa); else M (1 + kappa).
+      const std::int16_t* threshold = smallest[n_th - 1].data();
       for (int k = 0; k < nd; ++k)
       {
         float* c = costs.slice(k).ptr<float>(y);
-        const std::uint16_t* s = &sad[size_t(k) * w];
-        const std::uint16_t* t = threshold.data();
+        const std::int16_t* s = &sad[size_t(k) * w];
         for (int x = 0; x < w; ++x)
-          c[x] *= s[x] <= t[x] ? damp : boost;
+          c[x] *= s[x] <= threshold[x] ? damp : boost;
       }
     }
   });
@@ -177,11 +188,10 @@ CostVolume BioBinMatcher::levelCosts(size_t level, const cv::Mat& left, const cv
   times_.costs += msSince(t);
   t = Clock::now();
   // (e) 1-D DoG along disparity.
-  CostVolume filtered;
   DisparityDog(parameters_.sigma1 / sf, parameters_.sigma2 / sf, parameters_.tau, parameters_.alpha, parameters_.beta)
-      .apply(costs, filtered);
+      .applyInPlace(costs);
   times_.dog += msSince(t);
-  return filtered;
+  return costs;
 }
 
 void BioBinMatcher::fuseWithCoarser(CostVolume& costs, const CostVolume& coarser) const
@@ -325,6 +335,13 @@ DisparityMap BioBinMatcher::winnerTakeAll(const CostVolume& costs, cv::Size inpu
       }
     }
   });
+  return toInputResolution(left_d, right_k, input, sf);
+}
+
+DisparityMap BioBinMatcher::toInputResolution(cv::Mat& left_d, const cv::Mat& right_k, cv::Size input, double sf) const
+{
+  const cv::Size size = left_d.size();
+  const int w = size.width, h = size.height;
   if (parameters_.left_right_check)
   {
     const float tol = static_cast<float>(parameters_.left_right_tolerance / sf);
@@ -349,6 +366,92 @@ DisparityMap BioBinMatcher::winnerTakeAll(const CostVolume& costs, cv::Size inpu
     out.disparity = scaled;
   else
     cv::resize(scaled, out.disparity, input, 0, 0, cv::INTER_NEAREST);
+  return out;
+}
+
+DisparityMap BioBinMatcher::aggregateAndTakeWinners(const CostVolume& costs, const cv::Mat& barriers, cv::Size input,
+                                                    double sf)
+{
+  auto t = Clock::now();
+  const cv::Size size = costs.size();
+  const int w = size.width, h = size.height, nd = costs.disparities();
+  const int stride = SemiGlobalAggregation::stride(nd);
+  // 16-bit pixel-major costs: (M - min M) * kSgmCostScale, saturated at kMaxCost. A constant offset does
+  // not change the aggregation's winners, the scale fixes what P1 and P2 mean.
+  float lowest = HUGE_VALF;
+  for (int k = 0; k < nd; ++k)
+  {
+    double v;
+    cv::minMaxLoc(costs.slice(k), &v, nullptr);
+    lowest = std::min(lowest, static_cast<float>(v));
+  }
+  const float scale = static_cast<float>(BioBinParameters::kSgmCostScale);
+  sgm_costs_.resize(size_t(w) * h * stride);
+  cv::parallel_for_(cv::Range(0, h), [&](const cv::Range& rows) {
+    for (int y = rows.start; y < rows.end; ++y)
+    {
+      std::uint16_t* row = sgm_costs_.data() + size_t(y) * w * stride;
+      for (int k = 0; k < nd; ++k)
+      {
+        const float* c = costs.slice(k).ptr<float>(y);
+        for (int x = 0; x < w; ++x)
+          row[size_t(x) * stride + k] = static_cast<std::uint16_t>(
+              std::min((c[x] - lowest) * scale + 0.5f, float(SemiGlobalAggregation::kMaxCost)));
+      }
+    }
+  });
+  const auto units = [scale](double v) { return static_cast<int>(std::lround(v * scale)); };
+  const SemiGlobalAggregation sgm(units(parameters_.sgm_p1),
+                                  std::max(units(parameters_.sgm_p1), units(parameters_.sgm_p2)),
+                                  units(parameters_.sgm_p2_barrier), parameters_.sgm_paths);
+  const cv::Mat no_barriers;
+  sgm.aggregate(sgm_costs_, w, h, nd, parameters_.line_edge_barriers ? barriers : no_barriers, sgm_forward_,
+                sgm_backward_, SemiGlobalAggregation::bestSimd());
+  times_.spatial += msSince(t);
+  t = Clock::now();
+  // Winner-take-all on S = forward + backward, as winnerTakeAll() does on the filtered costs.
+  cv::Mat left_d(size, CV_32F), right_k(size, CV_32S);
+  cv::parallel_for_(cv::Range(0, h), [&](const cv::Range& rows) {
+    std::vector<std::uint32_t> best_right(w);
+    std::vector<std::uint32_t> sum(stride);
+    for (int y = rows.start; y < rows.end; ++y)
+    {
+      std::fill(best_right.begin(), best_right.end(), ~0u);
+      int* rk = right_k.ptr<int>(y);
+      std::fill(rk, rk + w, -1);
+      float* ld = left_d.ptr<float>(y);
+      for (int x = 0; x < w; ++x)
+      {
+        const size_t index = (size_t(y) * w + x) * stride;
+        const std::uint16_t* f = sgm_forward_.data() + index;
+        const std::uint16_t* b = sgm_backward_.data() + index;
+        const int kmax = std::min(nd - 1, x);  // a disparity must stay inside the right image: k <= x
+        for (int k = 0; k <= kmax; ++k)
+          sum[k] = std::uint32_t(f[k]) + b[k];
+        int best = 0;
+        for (int k = 1; k <= kmax; ++k)
+          if (sum[k] < sum[best])
+            best = k;
+        for (int k = 0; k <= kmax; ++k)
+          if (sum[k] < best_right[x - k])
+          {
+            best_right[x - k] = sum[k];
+            rk[x - k] = k;
+          }
+        float d = static_cast<float>(best);
+        if (parameters_.subpixel && best > 0 && best < kmax)
+        {
+          const float cm = float(sum[best - 1]), c0 = float(sum[best]), cp = float(sum[best + 1]);
+          const float den = cm - 2 * c0 + cp;
+          if (den > 0)
+            d += std::clamp(0.5f * (cm - cp) / den, -0.5f, 0.5f);
+        }
+        ld[x] = d;
+      }
+    }
+  });
+  DisparityMap out = toInputResolution(left_d, right_k, input, sf);
+  times_.wta += msSince(t);
   return out;
 }
 
@@ -388,12 +491,26 @@ DisparityMap BioBinMatcher::compute(const cv::Mat& left_in, const cv::Mat& right
       cv::resize(right, r, size, 0, 0, cv::INTER_AREA);
     }
     const int disparities = static_cast<int>(std::ceil(parameters_.max_disparity / sf)) + 1;
+    // Line/edge barriers only where a step uses them (the finest level's semi-global aggregation does
+    // only when it lowers P2 there): at the finest level that saves the quadrature bank's compute.
+    const bool semi_global = s == 0 && parameters_.aggregation == "semi_global";
+    const bool need_barriers = parameters_.line_edge_barriers &&
+                               (!semi_global || parameters_.sgm_p2_barrier != parameters_.sgm_p2);
     cv::Mat barriers;
-    CostVolume costs = levelCosts(s, l, r, disparities, &barriers);
+    CostVolume costs = levelCosts(s, l, r, disparities, need_barriers ? &barriers : nullptr);
     auto t = Clock::now();
     if (previous.disparities() > 0)
       fuseWithCoarser(costs, previous);
     times_.fusion += msSince(t);
+    if (previous.disparities() > 0)
+      spare_[s + 1] = std::move(previous);
+    if (semi_global)
+    {
+      DisparityMap result = aggregateAndTakeWinners(costs, barriers, left.size(), sf);
+      spare_[0] = std::move(costs);
+      times_.total = msSince(start);
+      return result;
+    }
     t = Clock::now();
     spatialFilter(costs, barriers);
     times_.spatial += msSince(t);
@@ -403,6 +520,7 @@ DisparityMap BioBinMatcher::compute(const cv::Mat& left_in, const cv::Mat& right
       t = Clock::now();
       DisparityMap result = winnerTakeAll(previous, left.size(), sf);
       times_.wta = msSince(t);
+      spare_[0] = std::move(previous);
       times_.total = msSince(start);
       return result;
     }

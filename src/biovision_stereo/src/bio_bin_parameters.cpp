@@ -39,5 +39,16 @@ void BioBinParameters::validate() const
     fail("max_iterations outside [0, 100]");
   if (!(left_right_tolerance >= 0.0))
     fail("left_right_tolerance must be >= 0");
+  if (aggregation != "iterative" && aggregation != "semi_global")
+    fail("aggregation '" + aggregation + "' is neither 'iterative' nor 'semi_global'");
+  // P2 * kSgmCostScale must stay <= SemiGlobalAggregation::kMaxCost (2047).
+  if (!(sgm_p1 >= 0.0 && sgm_p1 <= 255.0))
+    fail("sgm_p1 outside [0, 255]");
+  if (!(sgm_p2 >= 0.0 && sgm_p2 <= 255.0))
+    fail("sgm_p2 outside [0, 255]");
+  if (!(sgm_p2_barrier >= 0.0 && sgm_p2_barrier <= 255.0))
+    fail("sgm_p2_barrier outside [0, 255]");
+  if (sgm_paths != 4 && sgm_paths != 8)
+    fail("sgm_paths must be 4 or 8");
 }
 }  // namespace biovision_stereo

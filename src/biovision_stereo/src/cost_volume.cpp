@@ -14,6 +14,14 @@ CostVolume::CostVolume(cv::Size size, int disparities, float value) : size_(size
     slices_.emplace_back(size, CV_32F, cv::Scalar(value));
 }
 
+void CostVolume::create(cv::Size size, int disparities)
+{
+  size_ = size;
+  slices_.resize(disparities);
+  for (cv::Mat& s : slices_)
+    s.create(size, CV_32F);
+}
+
 float CostVolume::max() const
 {
   double m = -HUGE_VAL;

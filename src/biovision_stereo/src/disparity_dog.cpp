@@ -50,40 +50,40 @@ DisparityDog::Recursive DisparityDog::recursive(double sigma)
   return r;
 }
 
-void DisparityDog::firAdd(const CostVolume& in, int y, const std::vector<float>& t, float gain,
+void DisparityDog::firAdd(const std::vector<const float*>& in, int w, const std::vector<float>& t, float gain,
                           std::vector<float*>& out) const
 {
-  const int nd = in.disparities(), w = in.size().width, r = static_cast<int>(t.size() / 2);
+  const int nd = static_cast<int>(in.size()), r = static_cast<int>(t.size() / 2);
   for (int k = 0; k < nd; ++k)
   {
     float* o = out[k];
-    const float* c = in.slice(k).ptr<float>(y);
+    const float* c = in[k];
     const float t0 = gain * t[r];
     for (int x = 0; x < w; ++x)
       o[x] += t0 * c[x];
     for (int j = 1; j <= r; ++j)
     {
       const float tj = gain * t[r + j];
-      const float* a = in.slice(std::max(k - j, 0)).ptr<float>(y);
-      const float* b = in.slice(std::min(k + j, nd - 1)).ptr<float>(y);
+      const float* a = in[std::max(k - j, 0)];
+      const float* b = in[std::min(k + j, nd - 1)];
       for (int x = 0; x < w; ++x)
         o[x] += tj * (a[x] + b[x]);
     }
   }
 }
 
-void DisparityDog::recursiveAdd(const CostVolume& in, int y, float gain, std::vector<float*>& out,
+void DisparityDog::recursiveAdd(const std::vector<const float*>& in, int w, float gain, std::vector<float*>& out,
                                 std::vector<std::vector<float>>& s) const
 {
   // The recursion runs over the cost curve extended by `pad` replicated values at both ends, so that
   // its start-up transients fall outside the range and the result matches the replicated-border FIR.
-  const int nd = in.disparities(), w = in.size().width, pad = broad_recursive_.pad;
+  const int nd = static_cast<int>(in.size()), pad = broad_recursive_.pad;
   const int n = nd + 2 * pad;
   const Recursive& g = broad_recursive_;
   s.resize(n);
   for (auto& row : s)
     row.resize(w);
-  auto input = [&](int e) { return in.slice(std::clamp(e - pad, 0, nd - 1)).ptr<float>(y); };
+  auto input = [&](int e) { return in[std::clamp(e - pad, 0, nd - 1)]; };
   for (int e = 0; e < n; ++e)
   {
     const float* c = input(e);
@@ -113,21 +113,56 @@ void DisparityDog::recursiveAdd(const CostVolume& in, int y, float gain, std::ve
   }
 }
 
+void DisparityDog::filterRow(const std::vector<const float*>& in, int w, std::vector<float*>& out,
+                             std::vector<std::vector<float>>& scratch) const
+{
+  for (float* o : out)
+    std::fill(o, o + w, 0.f);
+  firAdd(in, w, narrow_, static_cast<float>(tau_ * alpha_), out);
+  if (broad_recursive_.enabled)
+    recursiveAdd(in, w, static_cast<float>(-tau_ * beta_), out, scratch);
+  else
+    firAdd(in, w, broad_, static_cast<float>(-tau_ * beta_), out);
+}
+
 void DisparityDog::apply(const CostVolume& in, CostVolume& out) const
 {
   out = CostVolume(in.size(), in.disparities(), 0.f);
+  const int nd = in.disparities(), w = in.size().width;
   cv::parallel_for_(cv::Range(0, in.size().height), [&](const cv::Range& rows) {
-    std::vector<float*> o(in.disparities());
+    std::vector<const float*> i(nd);
+    std::vector<float*> o(nd);
     std::vector<std::vector<float>> scratch;
     for (int y = rows.start; y < rows.end; ++y)
     {
-      for (int k = 0; k < in.disparities(); ++k)
+      for (int k = 0; k < nd; ++k)
+      {
+        i[k] = in.slice(k).ptr<float>(y);
         o[k] = out.slice(k).ptr<float>(y);
-      firAdd(in, y, narrow_, static_cast<float>(tau_ * alpha_), o);
-      if (broad_recursive_.enabled)
-        recursiveAdd(in, y, static_cast<float>(-tau_ * beta_), o, scratch);
-      else
-        firAdd(in, y, broad_, static_cast<float>(-tau_ * beta_), o);
+      }
+      filterRow(i, w, o, scratch);
+    }
+  });
+}
+
+void DisparityDog::applyInPlace(CostVolume& costs) const
+{
+  const int nd = costs.disparities(), w = costs.size().width;
+  cv::parallel_for_(cv::Range(0, costs.size().height), [&](const cv::Range& rows) {
+    std::vector<float> copy(size_t(nd) * w);  // one image row of the volume: the filter's input
+    std::vector<const float*> i(nd);
+    std::vector<float*> o(nd);
+    std::vector<std::vector<float>> scratch;
+    for (int k = 0; k < nd; ++k)
+      i[k] = copy.data() + size_t(k) * w;
+    for (int y = rows.start; y < rows.end; ++y)
+    {
+      for (int k = 0; k < nd; ++k)
+      {
+        o[k] = costs.slice(k).ptr<float>(y);
+        std::copy(o[k], o[k] + w, copy.data() + size_t(k) * w);
+      }
+      filterRow(i, w, o, scratch);
     }
   });
 }
@@ -135,13 +170,18 @@ void DisparityDog::apply(const CostVolume& in, CostVolume& out) const
 void DisparityDog::applyReference(const CostVolume& in, CostVolume& out) const
 {
   out = CostVolume(in.size(), in.disparities(), 0.f);
-  std::vector<float*> o(in.disparities());
+  const int nd = in.disparities(), w = in.size().width;
+  std::vector<const float*> i(nd);
+  std::vector<float*> o(nd);
   for (int y = 0; y < in.size().height; ++y)
   {
-    for (int k = 0; k < in.disparities(); ++k)
+    for (int k = 0; k < nd; ++k)
+    {
+      i[k] = in.slice(k).ptr<float>(y);
       o[k] = out.slice(k).ptr<float>(y);
-    firAdd(in, y, narrow_, static_cast<float>(tau_ * alpha_), o);
-    firAdd(in, y, broad_, static_cast<float>(-tau_ * beta_), o);
+    }
+    firAdd(i, w, narrow_, static_cast<float>(tau_ * alpha_), o);
+    firAdd(i, w, broad_, static_cast<float>(-tau_ * beta_), o);
   }
 }
 }  // namespace biovision_stereo

@@ -33,6 +33,11 @@ TEST(ParameterFiles, CfgDefaultsEqualTheCoreDefaults)
   EXPECT_EQ(cfg.subpixel, core.subpixel);
   EXPECT_EQ(cfg.left_right_check, core.left_right_check);
   EXPECT_EQ(cfg.left_right_tolerance, core.left_right_tolerance);
+  EXPECT_EQ(cfg.aggregation, core.aggregation);
+  EXPECT_EQ(cfg.sgm_p1, core.sgm_p1);
+  EXPECT_EQ(cfg.sgm_p2, core.sgm_p2);
+  EXPECT_EQ(cfg.sgm_p2_barrier, core.sgm_p2_barrier);
+  EXPECT_EQ(cfg.sgm_paths, core.sgm_paths);
 }
 
 TEST(ParameterFiles, EveryValueTheCfgAllowsPassesValidate)
@@ -49,7 +54,9 @@ TEST(ParameterFiles, FastModeYamlIsAValidOverlay)
   BioBinDisparityConfig config = BioBinDisparityConfig::__getDefault__();
   config.wavelengths = fast["wavelengths"].as<std::string>();
   config.max_disparity = fast["max_disparity"].as<int>();
+  config.aggregation = fast["aggregation"].as<std::string>();
   EXPECT_NO_THROW(toBioBinParameters(config).validate());
+  EXPECT_EQ(toBioBinParameters(config).aggregation, "iterative");
   EXPECT_EQ(toBioBinParameters(config).wavelengths, std::vector<double>{16.0});
 }
 

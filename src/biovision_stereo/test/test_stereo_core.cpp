@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
@@ -15,6 +16,7 @@
 #include "biovision_stereo/hamming.hpp"
 #include "biovision_common/eval/middlebury_dataset.hpp"
 #include "biovision_stereo/pixel_descriptor.hpp"
+#include "biovision_stereo/semi_global_aggregation.hpp"
 #include "biovision_common/eval/portable_float_map.hpp"
 
 using biovision_common::DisparityMetrics;
@@ -54,6 +56,54 @@ std::vector<cv::Mat> randomResponses(cv::Size size, unsigned seed)
     rng.fill(m, cv::RNG::NORMAL, 0, 1);
   }
   return odd;
+}
+
+// Brute-force semi-global aggregation: every path direction on its own in 64-bit integers, straight from
+// the recursion (Hirschmueller 2008), summed over the forward (predecessor left of / above p) or backward
+// directions. Returns S(x, y, d) at (y * w + x) * nd + d.
+std::vector<long> sgmReference(const std::vector<std::uint16_t>& costs, int w, int h, int nd, int p1, int p2,
+                               int p2_barrier, const cv::Mat& barriers, int paths, bool backward)
+{
+  const int stride = SemiGlobalAggregation::stride(nd);
+  std::vector<std::pair<int, int>> predecessor{{-1, 0}, {0, -1}};  // (dx, dy) of p - r
+  if (paths == 8)
+    predecessor = {{-1, 0}, {-1, -1}, {0, -1}, {1, -1}};
+  std::vector<long> sum(size_t(w) * h * nd, 0);
+  for (auto [dx, dy] : predecessor)
+  {
+    if (backward)
+    {
+      dx = -dx;
+      dy = -dy;
+    }
+    std::vector<long> l(size_t(w) * h * nd);
+    for (int i = 0; i < w * h; ++i)
+    {
+      const int index = backward ? w * h - 1 - i : i;  // predecessors come first in this order
+      const int x = index % w, y = index / w, qx = x + dx, qy = y + dy;
+      const long pen2 = !barriers.empty() && barriers.at<uchar>(y, x) ? std::max(p1, p2_barrier) : p2;
+      const bool first = qx < 0 || qx >= w || qy < 0 || qy >= h;
+      const long* q = first ? nullptr : &l[(size_t(qy) * w + qx) * nd];
+      const long qmin = first ? 0 : *std::min_element(q, q + nd);
+      for (int d = 0; d < nd; ++d)
+      {
+        long v = 0;
+        if (!first)
+        {
+          v = std::min(q[d], qmin + pen2);
+          if (d > 0)
+            v = std::min(v, q[d - 1] + p1);
+          if (d + 1 < nd)
+            v = std::min(v, q[d + 1] + p1);
+          v -= qmin;
+        }
+        l[size_t(index) * nd + d] = costs[size_t(index) * stride + d] + v;
+      }
+    }
+    for (size_t i = 0; i < l.size(); ++i)
+      sum[i] += l[i];
+  }
+  return sum;
 }
 }  // namespace
 
@@ -132,34 +182,116 @@ TEST(DisparityDog, RecursiveBroadGaussianMatchesTheExactFir)
   // sampled Gaussian (the ends are padded, so the border matches).
   EXPECT_LT(worst, 0.01 * 256) << "max |recursive - FIR| = " << worst;
   std::printf("DoG: max |recursive - FIR| = %.3f on costs in [0, 256]\n", worst);
+  // In place (no second volume): the same arithmetic, so bit for bit the same costs.
+  const auto deepCopy = [](const CostVolume& v) {
+    CostVolume c(v.size(), v.disparities());
+    for (int k = 0; k < v.disparities(); ++k)
+      v.slice(k).copyTo(c.slice(k));
+    return c;
+  };
+  CostVolume in_place = deepCopy(in);
+  dog.applyInPlace(in_place);
+  for (int k = 0; k < 60; ++k)
+    EXPECT_EQ(cv::norm(fast.slice(k), in_place.slice(k), cv::NORM_INF), 0.0) << "slice " << k;
+  // Narrow sigmas only (the exact FIR for both Gaussians): in place equals the reference exactly too.
+  const DisparityDog narrow(0.5, 1.5, 0.4, 1.0, 0.5);
+  CostVolume reference, narrow_in_place = deepCopy(in);
+  narrow.applyReference(in, reference);
+  narrow.applyInPlace(narrow_in_place);
+  for (int k = 0; k < 60; ++k)
+    EXPECT_EQ(cv::norm(reference.slice(k), narrow_in_place.slice(k), cv::NORM_INF), 0.0) << "slice " << k;
+}
+
+TEST(SemiGlobalAggregation, EveryPathEqualsTheBruteForceReference)
+{
+  // Small random volumes: disparity counts below, at and just under a SIMD vector's end; costs up to the
+  // largest allowed, so that saturation and the blocked lanes are exercised; random barriers.
+  std::mt19937 rng(7);
+  std::vector<SemiGlobalAggregation::Simd> simds{SemiGlobalAggregation::Simd::kGeneric};
+  if (SemiGlobalAggregation::bestSimd() == SemiGlobalAggregation::Simd::kAvx2)
+    simds.push_back(SemiGlobalAggregation::Simd::kAvx2);
+  else
+    std::fprintf(stderr, "no AVX2 on this CPU: only the generic path is compared with the reference\n");
+  for (int nd : {1, 5, 15, 16, 31, 40})
+    for (int paths : {4, 8})
+    {
+      const int w = 13, h = 9, stride = SemiGlobalAggregation::stride(nd);
+      ASSERT_EQ(stride % 16, 0);
+      ASSERT_GT(stride, nd);
+      std::vector<std::uint16_t> costs(size_t(w) * h * stride);
+      std::uniform_int_distribution<int> cost(0, SemiGlobalAggregation::kMaxCost);
+      for (auto& c : costs)
+        c = static_cast<std::uint16_t>(nd > 16 ? cost(rng) : cost(rng) % 64);  // small volumes: low costs
+      cv::Mat barriers(h, w, CV_8U);
+      cv::randu(barriers, 0, 2);
+      const int p1 = 7, p2 = nd > 16 ? SemiGlobalAggregation::kMaxCost : 40, p2_barrier = 3;
+      const SemiGlobalAggregation sgm(p1, p2, p2_barrier, paths);
+      const auto forward_ref = sgmReference(costs, w, h, nd, p1, p2, p2_barrier, barriers, paths, false);
+      const auto backward_ref = sgmReference(costs, w, h, nd, p1, p2, p2_barrier, barriers, paths, true);
+      std::vector<std::uint16_t> first_forward, first_backward;
+      for (const auto simd : simds)
+      {
+        std::vector<std::uint16_t> forward, backward;
+        sgm.aggregate(costs, w, h, nd, barriers, forward, backward, simd);
+        ASSERT_EQ(forward.size(), costs.size());
+        int wrong = 0;
+        for (int i = 0; i < w * h; ++i)
+          for (int d = 0; d < nd; ++d)
+          {
+            wrong += forward[size_t(i) * stride + d] != forward_ref[size_t(i) * nd + d];
+            wrong += backward[size_t(i) * stride + d] != backward_ref[size_t(i) * nd + d];
+          }
+        EXPECT_EQ(wrong, 0) << SemiGlobalAggregation::name(simd) << " nd " << nd << " paths " << paths;
+        if (first_forward.empty())
+        {
+          first_forward = forward;
+          first_backward = backward;
+        }
+        else  // every lane, blocked ones included: the SIMD paths agree bit for bit
+        {
+          EXPECT_EQ(forward, first_forward) << "nd " << nd << " paths " << paths;
+          EXPECT_EQ(backward, first_backward) << "nd " << nd << " paths " << paths;
+        }
+      }
+    }
+  EXPECT_THROW(SemiGlobalAggregation(10, 5, 5, 8), std::invalid_argument);  // P1 > P2
+  EXPECT_THROW(SemiGlobalAggregation(1, 5, 5, 6), std::invalid_argument);   // paths
+  const SemiGlobalAggregation sgm(1, 5, 5, 4);
+  std::vector<std::uint16_t> f, b;
+  EXPECT_THROW(sgm.aggregate(std::vector<std::uint16_t>(10), 3, 3, 4, cv::Mat(), f, b,
+                             SemiGlobalAggregation::Simd::kGeneric),
+               std::invalid_argument);  // volume size
 }
 
 TEST(BioBinMatcher, ShiftedTextureGivesTheExactDisparity)
 {
   const int width = 160, height = 100;
-  for (int d : {0, 5, 12})
-  {
-    const cv::Mat wide = texture(cv::Size(width + 40, height), 3 + d);
-    const cv::Mat left = wide(cv::Rect(20, 0, width, height)).clone();
-    // left(x) = wide(20 + x), right(x) = wide(20 + d + x): left(x) = right(x - d).
-    const cv::Mat right = wide(cv::Rect(20 + d, 0, width, height)).clone();
-    BioBinParameters p;
-    p.max_disparity = 24;
-    BioBinMatcher matcher(p);
-    const cv::Mat disparity = matcher.compute(left, right).disparity;
-    // The winner is the exact integer disparity; the sub-pixel parabola stays within half a pixel.
-    int exact = 0, close = 0, n = 0;
-    for (int y = 10; y < height - 10; ++y)
-      for (int x = 40; x < width - 10; ++x)
-      {
-        const float v = disparity.at<float>(y, x);
-        ++n;
-        exact += v >= 0 && std::lround(v) == d;
-        close += std::abs(v - d) < 0.5f;
-      }
-    EXPECT_GT(exact, 0.99 * n) << "disparity " << d << ": " << exact << " of " << n << " exact";
-    EXPECT_GT(close, 0.99 * n) << "disparity " << d << ": " << close << " of " << n << " within 0.5 px";
-  }
+  for (const std::string aggregation : {"iterative", "semi_global"})
+    for (int d : {0, 5, 12})
+    {
+      const cv::Mat wide = texture(cv::Size(width + 40, height), 3 + d);
+      const cv::Mat left = wide(cv::Rect(20, 0, width, height)).clone();
+      // left(x) = wide(20 + x), right(x) = wide(20 + d + x): left(x) = right(x - d).
+      const cv::Mat right = wide(cv::Rect(20 + d, 0, width, height)).clone();
+      BioBinParameters p;
+      p.max_disparity = 24;
+      p.aggregation = aggregation;
+      BioBinMatcher matcher(p);
+      const cv::Mat disparity = matcher.compute(left, right).disparity;
+      // The winner is the exact integer disparity; the sub-pixel parabola stays within half a pixel.
+      int exact = 0, close = 0, n = 0;
+      for (int y = 10; y < height - 10; ++y)
+        for (int x = 40; x < width - 10; ++x)
+        {
+          const float v = disparity.at<float>(y, x);
+          ++n;
+          exact += v >= 0 && std::lround(v) == d;
+          close += std::abs(v - d) < 0.5f;
+        }
+      EXPECT_GT(exact, 0.99 * n) << aggregation << " disparity " << d << ": " << exact << " of " << n << " exact";
+      EXPECT_GT(close, 0.99 * n) << aggregation << " disparity " << d << ": " << close << " of " << n
+                                 << " within 0.5 px";
+    }
 }
 
 TEST(BioBinMatcher, FastModeFindsTheDisparityAtQuarterSize)

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -27,6 +28,8 @@ namespace biovision_stereo
 ///  (f) costs above L = fusion_level * max(M') averaged with the upsampled coarser level's final
 ///      costs; iterative over-relaxed 3x3 binomial filtering that skips line/edge pixels of
 ///      biovision_v1; winner-take-all, optional sub-pixel parabola and left-right check.
+///  Beyond the thesis, BioBinParameters::aggregation = "semi_global" replaces the finest level's
+///  iterative filter by semi-global path aggregation (SemiGlobalAggregation) and its WTA.
 /// Not thread-safe (it caches V1 filter plans per level size); use one matcher per thread.
 class BioBinMatcher
 {
@@ -55,9 +58,16 @@ public:
   CostVolume levelCosts(size_t level, const cv::Mat& left, const cv::Mat& right, int disparities, cv::Mat* barriers);
 
 private:
+  /// The odd simple cells of one level (8 orientations, full resolution, wavelength base_wavelength):
+  /// the one place BioBin computes V1 responses for its descriptors. gray: CV_32F in [0, 1].
+  std::vector<cv::Mat> oddResponses(size_t level, const cv::Mat& gray);
   void fuseWithCoarser(CostVolume& costs, const CostVolume& coarser) const;
   void spatialFilter(CostVolume& costs, const cv::Mat& barriers) const;
   DisparityMap winnerTakeAll(const CostVolume& costs, cv::Size input, double sf) const;
+  /// parameters_.aggregation == "semi_global": the level's costs aggregated along paths, then WTA.
+  DisparityMap aggregateAndTakeWinners(const CostVolume& costs, const cv::Mat& barriers, cv::Size input, double sf);
+  /// Left disparities [level px, kInvalid] and the left-right check -> the map at input resolution.
+  DisparityMap toInputResolution(cv::Mat& left_d, const cv::Mat& right_k, cv::Size input, double sf) const;
 
   BioBinParameters parameters_;
   StageTimes times_;
@@ -65,5 +75,7 @@ private:
   // descriptors, and the full quadrature bank on its exact decimated grid for the line/edge barriers.
   std::vector<std::unique_ptr<biovision_v1::SimpleCellBank>> odd_banks_;
   std::vector<std::unique_ptr<biovision_v1::SimpleCellBank>> barrier_banks_;
+  std::vector<std::uint16_t> sgm_costs_, sgm_forward_, sgm_backward_;  // reused between frames
+  std::vector<CostVolume> spare_;  // each level's cost volume of the last frame, memory reused
 };
 }  // namespace biovision_stereo

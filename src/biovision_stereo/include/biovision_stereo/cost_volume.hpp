@@ -15,6 +15,10 @@ public:
   CostVolume() = default;
   CostVolume(cv::Size size, int disparities, float value = 0.f);
 
+  /// Reshape to size x disparities, keeping the memory when the shape is unchanged (values are then
+  /// left as they were, otherwise undefined): for buffers reused frame after frame.
+  void create(cv::Size size, int disparities);
+
   cv::Size size() const { return size_; }
   int disparities() const { return static_cast<int>(slices_.size()); }
   cv::Mat& slice(int k) { return slices_[k]; }

@@ -18,6 +18,8 @@ public:
   DisparityDog(double sigma1, double sigma2, double tau, double alpha, double beta);
 
   void apply(const CostVolume& in, CostVolume& out) const;
+  /// The same filter written back into `costs` (one image row copied at a time: no second volume).
+  void applyInPlace(CostVolume& costs) const;
   void applyReference(const CostVolume& in, CostVolume& out) const;
 
 private:
@@ -30,8 +32,12 @@ private:
 
   static std::vector<float> taps(double sigma);
   static Recursive recursive(double sigma);
-  void firAdd(const CostVolume& in, int y, const std::vector<float>& taps, float gain, std::vector<float*>& out) const;
-  void recursiveAdd(const CostVolume& in, int y, float gain, std::vector<float*>& out,
+  // in/out: one image row (w costs) per disparity.
+  void filterRow(const std::vector<const float*>& in, int w, std::vector<float*>& out,
+                 std::vector<std::vector<float>>& scratch) const;
+  void firAdd(const std::vector<const float*>& in, int w, const std::vector<float>& taps, float gain,
+              std::vector<float*>& out) const;
+  void recursiveAdd(const std::vector<const float*>& in, int w, float gain, std::vector<float*>& out,
                     std::vector<std::vector<float>>& scratch) const;
 
   double tau_, alpha_, beta_;

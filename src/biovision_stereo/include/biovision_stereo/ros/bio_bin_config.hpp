@@ -29,6 +29,11 @@ inline BioBinParameters toBioBinParameters(const BioBinDisparityConfig& config)
   p.subpixel = config.subpixel;
   p.left_right_check = config.left_right_check;
   p.left_right_tolerance = config.left_right_tolerance;
+  p.aggregation = config.aggregation;
+  p.sgm_p1 = config.sgm_p1;
+  p.sgm_p2 = config.sgm_p2;
+  p.sgm_p2_barrier = config.sgm_p2_barrier;
+  p.sgm_paths = config.sgm_paths;
   return p;
 }
 }  // namespace biovision_stereo

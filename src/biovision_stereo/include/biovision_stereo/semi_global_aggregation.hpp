@@ -1,0 +1,59 @@
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace biovision_stereo
+{
+/// Semi-global path aggregation (Hirschmueller 2008, the step of OpenCV's SGBM) over a BioBin cost
+/// volume: beyond the thesis, a switchable replacement of its iterative spatial filter (§4.4.5).
+/// For each of 4 or 8 image directions r, along every straight path
+///   L_r(p, d) = C(p, d) + min(L_r(p-r, d), L_r(p-r, d+-1) + P1, min_k L_r(p-r, k) + P2) - min_k L_r(p-r, k)
+/// with L_r(p, d) = C(p, d) at a path's first pixel; S(p, d) = sum over r of L_r(p, d).
+/// P2 is lowered to `p2_barrier` at pixels flagged in an optional barrier mask (biovision_v1's line/edge
+/// events: depth edges sit on image edges), clamped to >= P1.
+///
+/// Volumes are pixel-major: element (x, y, d) at index (y * width + x) * stride + d with stride =
+/// stride(disparities) (a multiple of 16 > disparities, so that the 16-bit SIMD lanes never straddle
+/// pixels). Costs are unsigned 16-bit in [0, kMaxCost]; lanes >= disparities are ignored.
+/// The forward (left, upper-left, up, upper-right) and backward sweeps run in parallel on two threads.
+class SemiGlobalAggregation
+{
+public:
+  /// Which instruction set the path recursion runs on. kGeneric is plain C++ (the compiler's baseline
+  /// vectorisation), kAvx2 is 16 lanes of 16 bits with AVX2 intrinsics.
+  enum class Simd
+  {
+    kGeneric,
+    kAvx2
+  };
+  static constexpr std::uint16_t kMaxCost = 2047;  ///< 8 paths * (kMaxCost + P2) stays below 2^16
+
+  /// p1, p2, p2_barrier in cost units, p1 <= p2 <= kMaxCost; paths 4 or 8. Throws std::invalid_argument.
+  SemiGlobalAggregation(int p1, int p2, int p2_barrier, int paths);
+
+  static int stride(int disparities) { return (disparities + 1 + 15) / 16 * 16; }
+  /// The fastest path this CPU runs (AVX2 when present).
+  static Simd bestSimd();
+  static std::string name(Simd simd);
+
+  /// costs: width * height * stride(disparities) values as above. barriers: empty or CV_8U of
+  /// width x height (non-zero = P2 lowered). forward, backward: resized and filled with the sums of
+  /// the forward and backward paths (S = forward + backward, each <= 4 (kMaxCost + P2)).
+  /// Throws std::invalid_argument on sizes that do not fit or when kAvx2 is asked for on a CPU without it.
+  void aggregate(const std::vector<std::uint16_t>& costs, int width, int height, int disparities,
+                 const cv::Mat& barriers, std::vector<std::uint16_t>& forward, std::vector<std::uint16_t>& backward,
+                 Simd simd) const;
+
+  int p1() const { return p1_; }
+  int p2() const { return p2_; }
+  int p2Barrier() const { return p2_barrier_; }
+  int paths() const { return paths_; }
+
+private:
+  int p1_, p2_, p2_barrier_, paths_;
+};
+}  // namespace biovision_stereo

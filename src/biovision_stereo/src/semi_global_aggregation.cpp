@@ -1,0 +1,203 @@
+#include "biovision_stereo/semi_global_aggregation.hpp"
+
+#include <immintrin.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+#include <opencv2/core/utility.hpp>
+
+#include "biovision_common/cpu_features.hpp"
+
+namespace biovision_stereo
+{
+namespace
+{
+constexpr std::uint16_t kBlocked = 0xFFFF;  // lanes outside 0..disparities-1: never the minimum
+constexpr int kGuard = 16;                  // blocked values before and after every path buffer
+
+/// One path step at one pixel: out[d] = c[d] + min(prev[d], prev[d-1] + P1, prev[d+1] + P1, prev_min + P2)
+/// - prev_min for d < nd, kBlocked above; sum[d] += out[d] (saturating). prev[-1] and prev[stride] must be
+/// readable and kBlocked (or a blocked lane of a neighbour). Returns the minimum of out over 0..nd-1.
+struct Step
+{
+  int nd, stride;
+  std::uint16_t p1;
+};
+
+inline std::uint16_t stepGeneric(const Step& s, const std::uint16_t* c, const std::uint16_t* prev,
+                                 std::uint16_t prev_min, std::uint16_t p2, std::uint16_t* out, std::uint16_t* sum)
+{
+  const std::uint32_t jump = std::uint32_t(prev_min) + p2;
+  std::uint16_t m = kBlocked;
+  for (int d = 0; d < s.nd; ++d)
+  {
+    const std::uint32_t v = std::min(std::min<std::uint32_t>(prev[d], jump),
+                                     std::min<std::uint32_t>(prev[d - 1], prev[d + 1]) + s.p1);
+    const auto l = static_cast<std::uint16_t>(c[d] + v - prev_min);
+    out[d] = l;
+    m = std::min(m, l);
+    sum[d] = static_cast<std::uint16_t>(std::min<std::uint32_t>(std::uint32_t(sum[d]) + l, kBlocked));
+  }
+  for (int d = s.nd; d < s.stride; ++d)
+  {
+    out[d] = kBlocked;
+    sum[d] = kBlocked;
+  }
+  return m;
+}
+
+__attribute__((target("avx2"))) inline std::uint16_t stepAvx2(const Step& s, const std::uint16_t* c,
+                                                              const std::uint16_t* prev, std::uint16_t prev_min,
+                                                              std::uint16_t p2, std::uint16_t* out, std::uint16_t* sum)
+{
+  const __m256i vp1 = _mm256_set1_epi16(static_cast<short>(s.p1));
+  const __m256i vjump = _mm256_set1_epi16(static_cast<short>(prev_min + p2));
+  const __m256i vmin = _mm256_set1_epi16(static_cast<short>(prev_min));
+  const __m256i lane = _mm256_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+  __m256i m = _mm256_set1_epi16(static_cast<short>(kBlocked));
+  for (int d = 0; d < s.stride; d += 16)
+  {
+    const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(prev + d));
+    const __m256i b = _mm256_adds_epu16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(prev + d - 1)), vp1);
+    const __m256i e = _mm256_adds_epu16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(prev + d + 1)), vp1);
+    const __m256i v = _mm256_min_epu16(_mm256_min_epu16(a, vjump), _mm256_min_epu16(b, e));
+    __m256i l = _mm256_add_epi16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(c + d)),
+                                 _mm256_sub_epi16(v, vmin));
+    if (d + 16 > s.nd)  // blocked lanes d + i >= nd (only the last vector holds any)
+    {
+      const __m256i blocked = _mm256_cmpgt_epi16(lane, _mm256_set1_epi16(static_cast<short>(s.nd - d - 1)));
+      l = _mm256_or_si256(l, blocked);
+    }
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + d), l);
+    m = _mm256_min_epu16(m, l);
+    __m256i* sp = reinterpret_cast<__m256i*>(sum + d);
+    _mm256_storeu_si256(sp, _mm256_adds_epu16(_mm256_loadu_si256(sp), l));
+  }
+  const __m128i m8 = _mm_min_epu16(_mm256_castsi256_si128(m), _mm256_extracti128_si256(m, 1));
+  return static_cast<std::uint16_t>(_mm_cvtsi128_si32(_mm_minpos_epu16(m8)) & 0xFFFF);
+}
+
+/// A path buffer of n pixels with guards of blocked values at both ends.
+class PathRow
+{
+public:
+  PathRow(int n, int stride) : stride_(stride), data_(size_t(n) * stride + 2 * kGuard, kBlocked), min_(n, 0) {}
+  std::uint16_t* at(int x) { return data_.data() + kGuard + size_t(x) * stride_; }
+  std::uint16_t& minAt(int x) { return min_[x]; }
+
+private:
+  int stride_;
+  std::vector<std::uint16_t> data_;
+  std::vector<std::uint16_t> min_;
+};
+
+// Flattened into the two entry points below, so that the AVX2 one compiles its loops (and inlines
+// stepAvx2) for AVX2 while the generic one stays on the baseline instruction set.
+template <bool kAvx2>
+void sweep(const std::vector<std::uint16_t>& costs, int w, int h, int nd, const cv::Mat& barriers, int p1, int p2,
+           int p2_barrier, int paths, bool backward, std::vector<std::uint16_t>& sums)
+{
+  const auto step = [](const Step& s, const std::uint16_t* c, const std::uint16_t* prev, std::uint16_t prev_min,
+                       std::uint16_t p2, std::uint16_t* out, std::uint16_t* sum) {
+    return kAvx2 ? stepAvx2(s, c, prev, prev_min, p2, out, sum) : stepGeneric(s, c, prev, prev_min, p2, out, sum);
+  };
+  const int stride = SemiGlobalAggregation::stride(nd);
+  const Step s{nd, stride, static_cast<std::uint16_t>(p1)};
+  const auto p2_edge = static_cast<std::uint16_t>(std::max(p1, p2_barrier));
+  sums.assign(size_t(w) * h * stride, 0);
+  // The predecessor of a path's first pixel: zero costs, so that L = C there.
+  PathRow start(1, stride);
+  std::fill(start.at(0), start.at(0) + nd, 0);
+  start.minAt(0) = 0;
+  const int vertical = paths == 8 ? 3 : 1;  // (diagonal, straight, other diagonal) or straight only
+  std::vector<PathRow> prev(vertical, PathRow(w, stride)), cur(vertical, PathRow(w, stride));
+  PathRow horizontal(2, stride);
+  const int dir = backward ? -1 : 1;  // forward: predecessors left and above; backward: right and below
+  for (int i = 0; i < h; ++i)
+  {
+    const int y = backward ? h - 1 - i : i;
+    const uchar* barrier_row = barriers.empty() ? nullptr : barriers.ptr<uchar>(y);
+    for (int j = 0; j < w; ++j)
+    {
+      const int x = backward ? w - 1 - j : j;
+      const size_t index = (size_t(y) * w + x) * stride;
+      const std::uint16_t* c = costs.data() + index;
+      std::uint16_t* sum = sums.data() + index;
+      const std::uint16_t pen2 = barrier_row && barrier_row[x] ? p2_edge : static_cast<std::uint16_t>(p2);
+      // Along the row (ping-pong between two buffers: a step must not overwrite its predecessor).
+      std::uint16_t* hout = horizontal.at(j & 1);
+      if (j == 0)
+        horizontal.minAt(0) = step(s, c, start.at(0), 0, pen2, hout, sum);
+      else
+        horizontal.minAt(0) = step(s, c, horizontal.at((j - 1) & 1), horizontal.minAt(0), pen2, hout, sum);
+      // From the previous row: predecessor columns x - dir (diagonal), x, x + dir (other diagonal).
+      for (int v = 0; v < vertical; ++v)
+      {
+        const int qx = x + (vertical == 3 ? (v - 1) * dir : 0);
+        const bool first = i == 0 || qx < 0 || qx >= w;
+        cur[v].minAt(x) = first ? step(s, c, start.at(0), 0, pen2, cur[v].at(x), sum)
+                                : step(s, c, prev[v].at(qx), prev[v].minAt(qx), pen2, cur[v].at(x), sum);
+      }
+    }
+    std::swap(prev, cur);
+  }
+}
+__attribute__((target("avx2"), flatten)) void sweepAvx2(const std::vector<std::uint16_t>& costs, int w, int h, int nd,
+                                                        const cv::Mat& barriers, int p1, int p2, int p2_barrier,
+                                                        int paths, bool backward, std::vector<std::uint16_t>& sums)
+{
+  sweep<true>(costs, w, h, nd, barriers, p1, p2, p2_barrier, paths, backward, sums);
+}
+
+__attribute__((flatten)) void sweepGeneric(const std::vector<std::uint16_t>& costs, int w, int h, int nd,
+                                           const cv::Mat& barriers, int p1, int p2, int p2_barrier, int paths,
+                                           bool backward, std::vector<std::uint16_t>& sums)
+{
+  sweep<false>(costs, w, h, nd, barriers, p1, p2, p2_barrier, paths, backward, sums);
+}
+}  // namespace
+
+SemiGlobalAggregation::SemiGlobalAggregation(int p1, int p2, int p2_barrier, int paths)
+  : p1_(p1), p2_(p2), p2_barrier_(p2_barrier), paths_(paths)
+{
+  if (p1 < 0 || p1 > p2 || p2 > kMaxCost)
+    throw std::invalid_argument("SemiGlobalAggregation: need 0 <= P1 <= P2 <= " + std::to_string(kMaxCost));
+  if (p2_barrier < 0 || p2_barrier > kMaxCost)
+    throw std::invalid_argument("SemiGlobalAggregation: P2 at barriers outside [0, " + std::to_string(kMaxCost) + "]");
+  if (paths != 4 && paths != 8)
+    throw std::invalid_argument("SemiGlobalAggregation: paths must be 4 or 8");
+}
+
+SemiGlobalAggregation::Simd SemiGlobalAggregation::bestSimd()
+{
+  return biovision_common::CpuFeatures::host().avx2 ? Simd::kAvx2 : Simd::kGeneric;
+}
+
+std::string SemiGlobalAggregation::name(Simd simd)
+{
+  return simd == Simd::kAvx2 ? "avx2" : "generic";
+}
+
+void SemiGlobalAggregation::aggregate(const std::vector<std::uint16_t>& costs, int width, int height, int disparities,
+                                      const cv::Mat& barriers, std::vector<std::uint16_t>& forward,
+                                      std::vector<std::uint16_t>& backward, Simd simd) const
+{
+  if (width < 1 || height < 1 || disparities < 1 || costs.size() != size_t(width) * height * stride(disparities))
+    throw std::invalid_argument("SemiGlobalAggregation: cost volume size does not match width x height x stride");
+  if (!barriers.empty() && (barriers.type() != CV_8UC1 || barriers.cols != width || barriers.rows != height))
+    throw std::invalid_argument("SemiGlobalAggregation: barriers must be empty or CV_8U of the volume's size");
+  if (simd == Simd::kAvx2 && !biovision_common::CpuFeatures::host().avx2)
+    throw std::invalid_argument("SemiGlobalAggregation: the AVX2 path needs a CPU with AVX2");
+  cv::parallel_for_(cv::Range(0, 2), [&](const cv::Range& r) {
+    for (int b = r.start; b < r.end; ++b)
+    {
+      std::vector<std::uint16_t>& sums = b ? backward : forward;
+      if (simd == Simd::kAvx2)
+        sweepAvx2(costs, width, height, disparities, barriers, p1_, p2_, p2_barrier_, paths_, b == 1, sums);
+      else
+        sweepGeneric(costs, width, height, disparities, barriers, p1_, p2_, p2_barrier_, paths_, b == 1, sums);
+    }
+  });
+}
+}  // namespace biovision_stereo

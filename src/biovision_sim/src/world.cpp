@@ -81,6 +81,22 @@ Texture::Spec textureSpec(const std::string& origin, const YAML::Node& n)
     fail(origin, n, "texture needs 0 < feature <= period");
   return s;
 }
+// YAML text that must be a map; errors name `origin` and the line.
+YAML::Node loadMap(const std::string& yaml_text, const std::string& origin, const std::string& what)
+{
+  YAML::Node node;
+  try
+  {
+    node = YAML::Load(yaml_text);
+  }
+  catch (const YAML::ParserException& e)
+  {
+    throw std::runtime_error("world " + origin + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax: " + e.msg);
+  }
+  if (!node.IsMap())
+    throw std::runtime_error("world " + origin + ": " + what + " must be a map");
+  return node;
+}
 }  // namespace
 
 int World::addTexture(const Texture::Spec& spec)
@@ -131,18 +147,7 @@ World::Object World::parseObject(const std::string& origin, const YAML::Node& o)
 
 int World::placeObject(const std::string& yaml_text, const std::string& origin)
 {
-  YAML::Node node;
-  try
-  {
-    node = YAML::Load(yaml_text);
-  }
-  catch (const YAML::ParserException& e)
-  {
-    throw std::runtime_error("world " + origin + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax: " + e.msg);
-  }
-  if (!node.IsMap())
-    throw std::runtime_error("world " + origin + ": an object must be a map");
-  const Object object = parseObject(origin, node);
+  const Object object = parseObject(origin, loadMap(yaml_text, origin, "an object"));
   for (size_t i = 0; i < objects_.size(); ++i)
     if (objects_[i].label == object.label)
     {
@@ -164,17 +169,7 @@ World World::load(const std::string& path)
 
 World World::parse(const std::string& yaml_text, const std::string& origin)
 {
-  YAML::Node root;
-  try
-  {
-    root = YAML::Load(yaml_text);
-  }
-  catch (const YAML::ParserException& e)
-  {
-    throw std::runtime_error("world " + origin + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax: " + e.msg);
-  }
-  if (!root.IsMap())
-    throw std::runtime_error("world " + origin + ": top level must be a map");
+  const YAML::Node root = loadMap(yaml_text, origin, "top level");
   World w;
   w.name_ = get<std::string>(origin, root, "name", "world");
   const YAML::Node floor = root["floor"];

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <ctime>
+#include <filesystem>
 #include <sstream>
 
 #include <sqlite3.h>
@@ -55,6 +56,11 @@ MemoryDatabase::MemoryDatabase(const std::string& path, const Options& options) 
     throw DatabaseError("MemoryDatabase: empty path");
   if (!(options.cell_size > 0.0) || !std::isfinite(options.cell_size))
     throw DatabaseError(path + ": cell_size must be > 0");
+  // A run's output folder may not exist yet (mission.launch puts the database there): make it.
+  std::error_code ignored;
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  if (!parent.empty())
+    std::filesystem::create_directories(parent, ignored);  // a failure shows as the lock file's error below
   // One writer: the lock file is held for the object's lifetime; the kernel drops it when we die.
   const std::string lock_path = path + ".lock";
   lock_fd_ = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);

@@ -144,6 +144,16 @@ TEST_F(MemoryDatabaseTest, AnotherCellSizeIsRefused)
   EXPECT_NE(errorOf(path_, other).find("cell_size"), std::string::npos);
 }
 
+TEST_F(MemoryDatabaseTest, AMissingFolderIsMadeAndAnUnwritableOneNamedInTheError)
+{
+  const std::string nested = dir_ + "/run/today/memory.db";
+  {
+    MemoryDatabase db(nested, {});  // the folders did not exist
+  }
+  EXPECT_TRUE(std::ifstream(nested).good());
+  EXPECT_NE(errorOf("/proc/no_such_folder/memory.db", {}).find("lock file"), std::string::npos);
+}
+
 TEST_F(MemoryDatabaseTest, ACorruptFileIsRefused)
 {
   {

@@ -12,6 +12,7 @@
 
 #include "biovision_common/atomic_file.hpp"
 #include "biovision_monitor/drawing.hpp"
+#include "biovision_monitor/path_plot.hpp"
 #include "biovision_monitor/time_series_plot.hpp"
 
 namespace biovision_monitor
@@ -65,24 +66,85 @@ void writePng(const std::string& path, const cv::Mat& image)
   biovision_common::writeFileAtomically(path, png.data(), png.size());
 }
 
-std::vector<cv::Point2d> readPanCsv(const std::string& path)
+/// The rows of a CSV file with a header line and `columns` numbers per row.
+std::vector<std::vector<double>> readCsv(const std::string& path, const std::string& header)
 {
   std::ifstream f(path);
   std::string line;
-  std::vector<cv::Point2d> points;
+  std::vector<std::vector<double>> rows;
+  const size_t columns = std::count(header.begin(), header.end(), ',') + 1;
   std::getline(f, line);  // header
   for (int n = 2; std::getline(f, line); ++n)
   {
     if (line.empty())
       continue;
     std::istringstream s(line);
-    double t = 0, pan = 0;
-    char comma = 0;
-    if (!(s >> t >> comma >> pan) || comma != ',')
-      throw std::runtime_error(path + ":" + std::to_string(n) + ": expected \"t,pan\", got \"" + line + "\"");
-    points.emplace_back(t, pan * 180.0 / M_PI);
+    std::vector<double> row(columns);
+    bool ok = true;
+    for (size_t c = 0; c < columns && ok; ++c)
+    {
+      char comma = ',';
+      ok = (c == 0 || (s >> comma && comma == ',')) && static_cast<bool>(s >> row[c]);
+    }
+    if (!ok)
+      throw std::runtime_error(path + ":" + std::to_string(n) + ": expected \"" + header + "\", got \"" + line + "\"");
+    rows.push_back(std::move(row));
   }
+  return rows;
+}
+
+std::vector<cv::Point2d> readPanCsv(const std::string& path)
+{
+  std::vector<cv::Point2d> points;
+  for (const auto& r : readCsv(path, "t,pan"))
+    points.emplace_back(r[0], r[1] * 180.0 / M_PI);
   return points;
+}
+
+cv::Point2d point(const nlohmann::json& xy)
+{
+  if (xy.is_array() && xy.size() >= 2 && xy[0].is_number() && xy[1].is_number())
+    return {xy[0].get<double>(), xy[1].get<double>()};
+  return {NAN, NAN};
+}
+
+/// path.png: path.csv ("t,x,y", map frame) over the LTM of mission.json's ltm_map, with home, the
+/// target (true: disc; remembered: ring), the new obstacle and the remembered objects.
+cv::Mat pathPicture(const std::string& dir, const nlohmann::json& mission)
+{
+  std::vector<cv::Point2d> path;
+  for (const auto& r : readCsv(dir + "path.csv", "t,x,y"))
+    path.emplace_back(r[1], r[2]);
+  GridView grid;
+  cv::Point2d origin(0, 0);
+  if (mission.contains("ltm_map"))
+  {
+    const auto& m = mission["ltm_map"];
+    const std::string file = dir + m.value("file", std::string("ltm.pgm"));
+    const cv::Mat pgm = cv::imread(file, cv::IMREAD_GRAYSCALE);
+    if (pgm.empty())
+      throw std::runtime_error(file + ": not a readable PGM");
+    grid.width = pgm.cols;
+    grid.height = pgm.rows;
+    grid.resolution = m.value("resolution", 0.0);
+    origin = point(m.value("origin", nlohmann::json()));
+    grid.data.assign(pgm.datastart, pgm.dataend);  // uchar -> signed char: 255 = -1 = unknown
+  }
+  const cv::Scalar kHome(180, 0, 180), kTarget(0, 0, 210), kObstacle(200, 120, 0), kObject(60, 60, 60);
+  std::vector<PathPlot::Mark> marks;
+  for (const auto& o : mission.value("ltm_objects", nlohmann::json::array()))
+    marks.push_back({{o.value("x", NAN), o.value("y", NAN)}, o.value("label", std::string()), kObject, false});
+  if (mission.contains("new_obstacle") && mission["new_obstacle"].is_object() && mission["new_obstacle"].contains("x"))
+    marks.push_back({{mission["new_obstacle"].value("x", NAN), mission["new_obstacle"].value("y", NAN)},
+                     "new obstacle",
+                     kObstacle,
+                     true});
+  const std::string target = mission.value("target", std::string("target"));
+  marks.push_back({point(mission.value("target_truth", nlohmann::json())), target, kTarget, true});
+  marks.push_back({point(mission.value("target_remembered", nlohmann::json())), "", kTarget, false});
+  marks.push_back({point(mission.value("home", nlohmann::json())), "home", kHome, true});
+  return PathPlot().render(grid, origin, path, marks, "path driven over the long-term memory (map frame)",
+                           cv::Size(720, 560));
 }
 
 cv::Mat ratesChart(const nlohmann::json& report)
@@ -135,7 +197,7 @@ std::vector<std::string> RunReport::write() const
   const std::string dir = folder_ + "/";
   std::vector<std::string> written, missing;
   std::ostringstream page;
-  nlohmann::json report, fixations, recognition;
+  nlohmann::json report, fixations, recognition, mission;
   const bool have_report = exists(dir + "report.json"), have_fix = exists(dir + "fixations.json"),
              have_recognition = exists(dir + "recognition.json");
   if (have_report)
@@ -150,6 +212,14 @@ std::vector<std::string> RunReport::write() const
     recognition = readJson(dir + "recognition.json");
   else
     missing.push_back("recognition.json");
+  const bool have_mission = exists(dir + "mission.json");
+  if (have_mission)
+    mission = readJson(dir + "mission.json");
+  if (exists(dir + "path.csv"))
+  {
+    writePng(dir + "path.png", pathPicture(dir, mission));
+    written.push_back(dir + "path.png");
+  }
 
   if (exists(dir + "pan.csv"))
   {
@@ -182,7 +252,29 @@ std::vector<std::string> RunReport::write() const
     page << "<p class=\"" << (ok ? "" : "bad") << "\">Result: <b>" << (ok ? "OK" : "FAILED") << "</b> (listened "
          << formatNumber(report.value("listened_s", 0.0), 1) << " s)</p>\n";
   }
-  for (const char* picture : {"panel.png", "rviz.png", "pan.png", "rates.png"})
+  if (have_mission)
+  {
+    const bool ok = mission.value("ok", false);
+    page << "<h2>Mission " << html(mission.value("mission", std::string())) << "</h2>\n<p class=\"" << (ok ? "" : "bad")
+         << "\">" << (mission.value("success", false) ? "Succeeded" : "Failed") << ": "
+         << html(mission.value("message", std::string())) << "</p>\n<table>\n";
+    auto row = [&](const std::string& name, const std::string& value) {
+      page << "<tr><td>" << html(name) << "</td><td>" << html(value) << "</td></tr>\n";
+    };
+    auto number = [&](const char* key, int digits) {
+      return mission.contains(key) && mission[key].is_number() ? formatNumber(mission[key].get<double>(), digits)
+                                                               : std::string("–");
+    };
+    row("target " + mission.value("target", std::string()) + " found",
+        std::string(mission.value("found", false) ? "yes" : "no") + ", after " + number("found_after_s", 1) +
+            " s; remembered " + number("target_error_m", 2) + " m from where it is");
+    row("returned home", std::string(mission.value("returned", false) ? "yes" : "no") + ", final distance " +
+                             number("final_distance_m", 2) + " m");
+    row("collisions", std::to_string(mission.value("collisions", nlohmann::json::array()).size()));
+    row("path driven", number("path_length_m", 2) + " m in " + number("sim_duration_s", 1) + " s (sim)");
+    page << "</table>\n";
+  }
+  for (const char* picture : {"path.png", "panel.png", "rviz.png", "pan.png", "rates.png"})
   {
     const std::string path = dir + picture;
     std::ifstream f(path, std::ios::binary);

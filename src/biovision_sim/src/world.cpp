@@ -81,6 +81,22 @@ Texture::Spec textureSpec(const std::string& origin, const YAML::Node& n)
     fail(origin, n, "texture needs 0 < feature <= period");
   return s;
 }
+// YAML text that must be a map; errors name `origin` and the line.
+YAML::Node loadMap(const std::string& yaml_text, const std::string& origin, const std::string& what)
+{
+  YAML::Node node;
+  try
+  {
+    node = YAML::Load(yaml_text);
+  }
+  catch (const YAML::ParserException& e)
+  {
+    throw std::runtime_error("world " + origin + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax: " + e.msg);
+  }
+  if (!node.IsMap())
+    throw std::runtime_error("world " + origin + ": " + what + " must be a map");
+  return node;
+}
 }  // namespace
 
 int World::addTexture(const Texture::Spec& spec)
@@ -95,6 +111,52 @@ int World::addObject(const Object& object)
   return static_cast<int>(objects_.size()) - 1;
 }
 
+World::Object World::parseObject(const std::string& origin, const YAML::Node& o)
+{
+  Object obj;
+  obj.label = get<std::string>(origin, o, "label", "");
+  if (obj.label.empty())
+    fail(origin, o, "every object needs a 'label'");
+  obj.shape = get<std::string>(origin, o, "shape", "box");
+  obj.position = vec3(origin, o, "position", obj.position);
+  obj.yaw = get<double>(origin, o, "yaw", 0.0);
+  obj.obstacle = get<bool>(origin, o, "obstacle", true);
+  if (obj.shape == "box")
+    obj.size = vec3(origin, o, "size", obj.size);
+  else if (obj.shape == "cylinder")
+  {
+    const double r = get<double>(origin, o, "radius", 0.1), height = get<double>(origin, o, "height", 0.2);
+    obj.size = Eigen::Vector3d(2 * r, 2 * r, height);
+  }
+  else
+    fail(origin, o["shape"], "unknown shape '" + obj.shape + "' (box, cylinder)");
+  if (!(obj.size.minCoeff() > 0))
+    fail(origin, o, "object '" + obj.label + "' needs positive dimensions");
+  try
+  {
+    obj.texture = addTexture(textureSpec(origin, o["texture"]));
+  }
+  catch (const std::runtime_error& e)
+  {
+    if (std::string(e.what()).rfind("world ", 0) == 0)
+      throw;
+    fail(origin, o["texture"] ? o["texture"] : o, e.what());
+  }
+  return obj;
+}
+
+int World::placeObject(const std::string& yaml_text, const std::string& origin)
+{
+  const Object object = parseObject(origin, loadMap(yaml_text, origin, "an object"));
+  for (size_t i = 0; i < objects_.size(); ++i)
+    if (objects_[i].label == object.label)
+    {
+      objects_[i] = object;  // its old texture stays in textures_ (a few per run; never looked up again)
+      return static_cast<int>(i);
+    }
+  return addObject(object);
+}
+
 World World::load(const std::string& path)
 {
   std::ifstream in(path);
@@ -107,17 +169,7 @@ World World::load(const std::string& path)
 
 World World::parse(const std::string& yaml_text, const std::string& origin)
 {
-  YAML::Node root;
-  try
-  {
-    root = YAML::Load(yaml_text);
-  }
-  catch (const YAML::ParserException& e)
-  {
-    throw std::runtime_error("world " + origin + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax: " + e.msg);
-  }
-  if (!root.IsMap())
-    throw std::runtime_error("world " + origin + ": top level must be a map");
+  const YAML::Node root = loadMap(yaml_text, origin, "top level");
   World w;
   w.name_ = get<std::string>(origin, root, "name", "world");
   const YAML::Node floor = root["floor"];
@@ -144,38 +196,7 @@ World World::parse(const std::string& yaml_text, const std::string& origin)
   if (objects && !objects.IsSequence())
     fail(origin, objects, "'objects' must be a list");
   for (const YAML::Node& o : objects)
-  {
-    Object obj;
-    obj.label = get<std::string>(origin, o, "label", "");
-    if (obj.label.empty())
-      fail(origin, o, "every object needs a 'label'");
-    obj.shape = get<std::string>(origin, o, "shape", "box");
-    obj.position = vec3(origin, o, "position", obj.position);
-    obj.yaw = get<double>(origin, o, "yaw", 0.0);
-    obj.obstacle = get<bool>(origin, o, "obstacle", true);
-    if (obj.shape == "box")
-      obj.size = vec3(origin, o, "size", obj.size);
-    else if (obj.shape == "cylinder")
-    {
-      const double r = get<double>(origin, o, "radius", 0.1), height = get<double>(origin, o, "height", 0.2);
-      obj.size = Eigen::Vector3d(2 * r, 2 * r, height);
-    }
-    else
-      fail(origin, o["shape"], "unknown shape '" + obj.shape + "' (box, cylinder)");
-    if (!(obj.size.minCoeff() > 0))
-      fail(origin, o, "object '" + obj.label + "' needs positive dimensions");
-    try
-    {
-      obj.texture = w.addTexture(textureSpec(origin, o["texture"]));
-    }
-    catch (const std::runtime_error& e)
-    {
-      if (std::string(e.what()).rfind("world ", 0) == 0)
-        throw;
-      fail(origin, o["texture"] ? o["texture"] : o, e.what());
-    }
-    w.addObject(obj);
-  }
+    w.addObject(w.parseObject(origin, o));
   return w;
 }
 }  // namespace biovision_sim

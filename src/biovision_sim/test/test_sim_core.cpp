@@ -405,6 +405,27 @@ TEST(World, BadFilesNameTheLine)
   EXPECT_EQ(message("objects:\n  - {label: a, shape: cylinder, radius: 0.1, height: 0.3}\n"), "no error");
 }
 
+TEST(World, PlaceObjectAddsOrReplacesByLabelAndRefusesBadObjects)
+{
+  World w = World::parse("objects:\n  - {label: crate, position: [1, 0, 0.2], size: [0.4, 0.4, 0.4]}\n");
+  EXPECT_EQ(w.placeObject("{label: bin, shape: cylinder, position: [2, 1, 0.3], radius: 0.2, height: 0.6}"), 1);
+  ASSERT_EQ(w.objects().size(), 2u);
+  EXPECT_DOUBLE_EQ(w.objects()[1].size.x(), 0.4);
+  // The same label moves the object instead of adding a second one.
+  EXPECT_EQ(w.placeObject("{label: crate, position: [-1, 2, 0.2], size: [0.4, 0.4, 0.4]}"), 0);
+  ASSERT_EQ(w.objects().size(), 2u);
+  EXPECT_DOUBLE_EQ(w.objects()[0].position.x(), -1.0);
+  const size_t textures = w.textures().size();
+  for (const char* bad : {"{shape: box}", "{label: x, shape: sphere}", "[1, 2]", "{label: x, size: [1, 0, 1]}",
+                          "{label: crate, texture: {type: marble}}", "{label: x"})
+  {
+    EXPECT_THROW(w.placeObject(bad, "sim/place_object"), std::runtime_error) << bad;
+    EXPECT_EQ(w.objects().size(), 2u) << bad;
+    EXPECT_EQ(w.textures().size(), textures) << bad;
+  }
+  EXPECT_DOUBLE_EQ(w.objects()[0].position.x(), -1.0);
+}
+
 TEST(World, ShippedWorldsLoad)
 {
   for (const char* f : {"tabletop.yaml", "corridor.yaml"})

@@ -85,7 +85,17 @@ void SearchTask::onAct(const Percept& percept, MotorCommand& command)
     command.mode = "excursion";
     return;
   }
-  command.head_mode = "explore";
+  // Stop and look: the head explores while the base stands at a new exploration goal, and looks ahead
+  // while it drives (the base's STM then covers where it goes); look_time 0 explores all the time.
+  command.head_mode = parameters_.look_time > 0 ? "look_ahead" : "explore";
+  if (percept.time < look_until_)
+  {
+    // Turning in place, a quarter turn ahead of the heading all the time: the view sweeps round.
+    command.head_mode = "explore";
+    command.base = MotorCommand::Base::Heading;
+    command.heading = std::remainder(percept.pose.yaw + M_PI / 2, 2 * M_PI);
+    return;
+  }
   if (!percept.pose_valid)
   {
     command.base = MotorCommand::Base::Stop;
@@ -112,7 +122,9 @@ void SearchTask::onAct(const Percept& percept, MotorCommand& command)
     has_goal_ = exploration_.nextGoal(percept, home, next);
     if (has_goal_)
       path_.setGoal(next);
-    goal_time_ = percept.time;
+    // The look at the new goal's start does not count against explore_period.
+    look_until_ = trapped ? -1.0 : percept.time + parameters_.look_time;
+    goal_time_ = std::max(percept.time, look_until_);
     trapped_since_ = -1;
   }
   if (has_goal_)

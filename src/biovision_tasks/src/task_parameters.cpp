@@ -30,6 +30,7 @@ void TaskParameters::validate() const
   check("replan_period", replan_period, 0.1, 600.0);
   check("explore_step", explore_step, 0.2, 20.0);
   check("explore_period", explore_period, 1.0, 600.0);
+  check("look_time", look_time, 0.0, 600.0);
   check("visit_cell", visit_cell, 0.05, 5.0);
   check("home_range_cost", home_range_cost, 0.0, 100.0);
   check("trapped_timeout", trapped_timeout, 1.0, 3600.0);
@@ -51,6 +52,7 @@ const std::vector<std::pair<std::string, double TaskParameters::*>>& TaskParamet
       {"replan_period", &TaskParameters::replan_period},
       {"explore_step", &TaskParameters::explore_step},
       {"explore_period", &TaskParameters::explore_period},
+      {"look_time", &TaskParameters::look_time},
       {"visit_cell", &TaskParameters::visit_cell},
       {"home_range_cost", &TaskParameters::home_range_cost},
       {"trapped_timeout", &TaskParameters::trapped_timeout},

@@ -360,6 +360,37 @@ TEST(SearchTask, GoesFirstWhereTheMemoryRemembersTheObject)
   EXPECT_EQ(m2.step(weak).mode, "exploration");
 }
 
+TEST(SearchTask, StopsAndLooksRoundAtEachExplorationGoalThenDrivesLookingAhead)
+{
+  TaskParameters parameters;
+  ASSERT_GT(parameters.look_time, 0.0);
+  TaskManager m(parameters);
+  m.add(spec("search cup"));
+  Percept p = at(0, -2.0, 0.0, 0.3);
+  p.map = wallMap();
+  m.step(p);  // the first cycle starts the task
+  p.time = 0.1;
+  MotorCommand c = m.step(p);
+  EXPECT_EQ(c.mode, "exploration");
+  EXPECT_EQ(c.base, MotorCommand::Base::Heading);  // turning in place, a quarter turn ahead...
+  EXPECT_NEAR(std::remainder(c.heading - (0.3 + M_PI / 2), 2 * M_PI), 0.0, 1e-9);
+  EXPECT_EQ(c.head_mode, "explore");  // ...while the head explores
+  p.time = 0.1 + parameters.look_time + 0.2;
+  c = m.step(p);
+  EXPECT_EQ(c.base, MotorCommand::Base::Goal);  // then it drives to the goal, looking where it goes
+  EXPECT_EQ(c.head_mode, "look_ahead");
+  // look_time 0: the thesis's way, the head explores while the base drives.
+  parameters.look_time = 0.0;
+  TaskManager thesis(parameters);
+  thesis.add(spec("search cup"));
+  p.time = 0;
+  thesis.step(p);
+  p.time = 0.1;
+  c = thesis.step(p);
+  EXPECT_EQ(c.base, MotorCommand::Base::Goal);
+  EXPECT_EQ(c.head_mode, "explore");
+}
+
 // The thesis' mission on a kinematic point robot that drives to each Goal at 0.5 m/s: search an object
 // behind a wall (seen within 2 m), then return home; exploration must find it, the return must plan
 // around the wall the map holds.

@@ -187,8 +187,14 @@ MissionTrialResult runMissionTrial(unsigned seed, const TaskParameters& tasks,
         result.found_time = t;
         const auto& f = manager.record().found.at(kTarget);
         result.found_error = std::hypot(f.x - room.goal_x, f.y - room.goal_y);
+        result.target_found = {f.x, f.y};
         result.new_obstacles_placed = placeNewObstacles(world, {pose.x, pose.y}, {room.start_x, room.start_y},
                                                         o.new_obstacles);
+        for (int k = 0; k < result.new_obstacles_placed; ++k)
+        {
+          const auto& added = world.objects()[world.objects().size() - result.new_obstacles_placed + k];
+          result.new_obstacle_positions.emplace_back(added.position.x(), added.position.y());
+        }
         plan = std::make_unique<biovision_sim::FloorPlan>(world);
       }
       head_controller.setBehaviour(command.head_mode == "explore" ? HeadAttractor::Behaviour::kExplore
@@ -242,13 +248,21 @@ MissionTrialResult runMissionTrial(unsigned seed, const TaskParameters& tasks,
     const double x0 = drive.x(), y0 = drive.y();
     const bool hit = drive.step(dt, world);
     if (hit && !in_contact)
+    {
       ++result.collisions;
+      result.collision_positions.emplace_back(drive.x(), drive.y());
+    }
+    if (result.path.empty() || std::hypot(drive.x() - result.path.back().x, drive.y() - result.path.back().y) > 0.05)
+      result.path.emplace_back(drive.x(), drive.y());
     const double clearance = plan->clearance(drive.x(), drive.y()) - limits.radius;
     in_contact = hit || (in_contact && clearance <= 0.02);
     result.path_length += std::hypot(drive.x() - x0, drive.y() - y0);
     result.min_clearance = std::min(result.min_clearance, clearance);
   }
   result.time = step * dt;
+  result.home = {room.start_x, room.start_y};
+  result.target = {room.goal_x, room.goal_y};
+  result.ltm = ltmMap(ltm, room);
   result.final_home_distance = std::hypot(drive.x() - room.start_x, drive.y() - room.start_y);
   std::ostringstream outcome;
   for (const auto& f : manager.finished())

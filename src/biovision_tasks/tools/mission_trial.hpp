@@ -1,9 +1,11 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "biovision_attractor/base_attractor_parameters.hpp"
 #include "biovision_attractor/head_attractor_parameters.hpp"
+#include "biovision_tasks/occupancy_map.hpp"
 #include "biovision_tasks/task_parameters.hpp"
 
 namespace biovision_tasks
@@ -51,6 +53,11 @@ struct MissionTrialResult
   int ltm_cells = 0;         ///< obstacle cells in the LTM at the end
   double ltm_precision = 0;  ///< LTM cells on a true footprint (within one cell) / LTM cells
   std::string outcome;       ///< the task manager's last finished-task reasons
+  // For the trial's picture (mission_eval --plots): map frame, metres.
+  std::vector<cv::Point2d> path;  ///< the base's positions, every 5 cm
+  cv::Point2d home, target, target_found{NAN, NAN};
+  std::vector<cv::Point2d> new_obstacle_positions, collision_positions;
+  OccupancyMap ltm;  ///< the LTM at the end, strength 0..100
 };
 
 /// Runs the mission of `seed`. Throws std::invalid_argument for bad parameters.

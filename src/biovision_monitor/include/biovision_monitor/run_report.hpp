@@ -10,9 +10,13 @@ namespace biovision_monitor
 ///  - pan.png: the head's pan [deg] over time (pan.csv: "t,pan" in s and rad) with the fixations of
 ///    fixations.json marked by object name;
 ///  - rates.png: each topic's message rate [Hz] from report.json (topic_report), silent topics in red;
+///  - path.png: the path driven (path.csv: "t,x,y" in s and m, map frame) over the long-term memory
+///    (mission.json's ltm_map: a PGM of the grid's signed bytes, its origin and resolution), with home,
+///    the target, the new obstacle and the remembered objects of mission.json (biovision_tasks'
+///    mission_director);
 ///  - report.html: self-contained (the PNGs embedded as base64): the result, the topic table, the
-///    fixations, the recognition summary (recognition.json) and every picture the folder holds among
-///    panel.png, rviz.png, pan.png, rates.png.
+///    fixations, the recognition summary (recognition.json), the mission's outcome (mission.json) and
+///    every picture the folder holds among path.png, panel.png, rviz.png, pan.png, rates.png.
 /// Inputs that are missing are left out (and named in the page); none is required.
 class RunReport
 {

@@ -22,10 +22,13 @@ struct SimulatorParameters
   int seed = 1;                               ///< seed of the image noise
   double real_time_factor = 1.0;              ///< sim seconds per wall second, >= 0 (0: as fast as possible)
   bool publish_clock = true;                  ///< publish sim time on /clock (for use_sim_time)
-  double start_x = 0.0;                       ///< initial base position in map [m], finite
-  double start_y = 0.0;                       ///< initial base position in map [m], finite
-  double start_yaw = 0.0;                     ///< initial base heading in map [rad], finite
-  double servo_speed = 3.0;                   ///< pan and tilt speed limit [rad/s], > 0
+  /// publish the identity map -> odom (the odometry is perfect); false when a localisation node, e.g.
+  /// biovision_memory's landmark correction, owns that transform (two publishers would fight)
+  bool publish_map_to_odom = true;
+  double start_x = 0.0;      ///< initial base position in map [m], finite
+  double start_y = 0.0;      ///< initial base position in map [m], finite
+  double start_yaw = 0.0;    ///< initial base heading in map [rad], finite
+  double servo_speed = 3.0;  ///< pan and tilt speed limit [rad/s], > 0
 
   /// Throws std::invalid_argument naming the offending field, its value and its range.
   void validate() const;

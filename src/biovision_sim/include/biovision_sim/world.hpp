@@ -9,6 +9,11 @@
 
 #include "biovision_sim/texture.hpp"
 
+namespace YAML
+{
+class Node;
+}
+
 namespace biovision_sim
 {
 /// A textured world: a floor, walls and objects (boxes, cylinders), each with a label. Frame: x forward
@@ -44,8 +49,16 @@ public:
   /// Adds an object programmatically (tests, tools); returns its index.
   int addObject(const Object& object);
   int addTexture(const Texture::Spec& spec);
+  /// Adds one object given as a world-file `objects` entry in YAML (e.g. `{label: crate, shape: box,
+  /// position: [1, 0, 0.2], size: [0.4, 0.4, 0.4]}`), or replaces the object with the same label (moves
+  /// it, reshapes it, retextures it). Returns its index. Throws std::runtime_error naming `origin` for
+  /// bad YAML or a bad field; the world is unchanged then. Used by the simulator's sim/place_object.
+  int placeObject(const std::string& yaml_text, const std::string& origin = "<object>");
 
 private:
+  /// One `objects` entry; adds its texture to textures_ last, so a throw leaves the world unchanged.
+  Object parseObject(const std::string& origin, const YAML::Node& node);
+
   std::string name_ = "world";
   std::vector<Object> objects_;
   std::vector<std::shared_ptr<Texture>> textures_;

@@ -136,7 +136,7 @@ Simulator::Simulator(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
   : nh_(nh),
     parameters_(loadParameters(private_nh)),
     world_(World::load(parameters_.world)),
-    renderer_(world_, parameters_.supersample),
+    renderer_(std::make_unique<SceneRenderer>(world_, parameters_.supersample)),
     robot_(loadRobotDescription()),
     left_chain_(chainFromUrdf(robot_, "base_link", "stereo_left_optical")),
     right_chain_(chainFromUrdf(robot_, "base_link", "stereo_right_optical")),
@@ -170,6 +170,7 @@ SimulatorParameters Simulator::loadParameters(const ros::NodeHandle& private_nh)
   readParameter(private_nh, "seed", p.seed);
   readParameter(private_nh, "real_time_factor", p.real_time_factor);
   readParameter(private_nh, "publish_clock", p.publish_clock);
+  readParameter(private_nh, "publish_map_to_odom", p.publish_map_to_odom);
   readParameter(private_nh, "start_x", p.start_x);
   readParameter(private_nh, "start_y", p.start_y);
   readParameter(private_nh, "start_yaw", p.start_yaw);
@@ -210,6 +211,34 @@ void Simulator::subscribe()
   cmd_sub_ = nh_.subscribe<geometry_msgs::Twist>("cmd_vel", 10, [this](const geometry_msgs::TwistConstPtr& m) {
     base_.command(m->linear.x, m->angular.z);
   });
+  place_srv_ = nh_.advertiseService("sim/place_object", &Simulator::placeObject, this);
+}
+
+bool Simulator::placeObject(biovision_msgs::PlaceObject::Request& request,
+                            biovision_msgs::PlaceObject::Response& response)
+{
+  World changed = world_;
+  try
+  {
+    const int index = changed.placeObject(request.object, "sim/place_object");
+    const World::Object& o = changed.objects()[index];
+    if (o.obstacle && !base_.obstacleAt(base_.x(), base_.y(), changed).empty() &&
+        base_.obstacleAt(base_.x(), base_.y(), world_).empty())
+      throw std::runtime_error("sim/place_object: '" + o.label + "' would overlap the robot");
+    world_ = std::move(changed);
+    renderer_ = std::make_unique<SceneRenderer>(world_, parameters_.supersample);
+    publishObjectMarkers();
+    response.success = true;
+    response.message = "placed '" + o.label + "'";
+    ROS_INFO("sim: %s at (%.2f, %.2f)", response.message.c_str(), o.position.x(), o.position.y());
+  }
+  catch (const std::runtime_error& e)
+  {
+    response.success = false;
+    response.message = e.what();
+    ROS_ERROR("sim: %s", e.what());
+  }
+  return true;
 }
 
 void Simulator::publishObjectMarkers()
@@ -226,10 +255,11 @@ void Simulator::run()
   const int steps_per_frame = std::max(1, static_cast<int>(std::lround(p.physics_rate / p.camera_rate)));
   epoch_ = p.publish_clock ? ros::Time(1.0) : ros::Time::now();  // ROS time 0 means "unset"
   wall_start_ = ros::WallTime::now();
-  // The simulated odometry is perfect: map and odom coincide.
-  static_tf_.sendTransform(toTransform(Eigen::Isometry3d::Identity(), "map", "odom", epoch_));
+  // The simulated odometry is perfect: map and odom coincide (unless a localisation node says otherwise).
+  if (p.publish_map_to_odom)
+    static_tf_.sendTransform(toTransform(Eigen::Isometry3d::Identity(), "map", "odom", epoch_));
   ROS_INFO("sim: world '%s' (%zu objects, %zu triangles), %dx%d at %.1f Hz, baseline %.3f m, real-time factor %.2f%s",
-           world_.name().c_str(), world_.objects().size(), renderer_.triangles(), p.width, p.height, p.camera_rate,
+           world_.name().c_str(), world_.objects().size(), renderer_->triangles(), p.width, p.height, p.camera_rate,
            calibration_.baseline(), p.real_time_factor, p.publish_clock ? ", publishing /clock" : "");
   while (ros::ok())
   {
@@ -317,8 +347,8 @@ void Simulator::renderAndPublishCameras(const Eigen::Isometry3d& odom_from_base,
   const std::vector<std::string> names = {"head_pan_joint", "head_tilt_joint"};
   const std::vector<double> q = {pan_.position(), tilt_.position()};
   cv::Mat left, right, depth, right_depth;
-  renderer_.render(odom_from_base * left_chain_.evaluate(names, q), calibration_.camera(), left, depth);
-  renderer_.render(odom_from_base * right_chain_.evaluate(names, q), calibration_.camera(), right, right_depth);
+  renderer_->render(odom_from_base * left_chain_.evaluate(names, q), calibration_.camera(), left, depth);
+  renderer_->render(odom_from_base * right_chain_.evaluate(names, q), calibration_.camera(), right, right_depth);
   degrade(left);
   degrade(right);
   std_msgs::Header lh;

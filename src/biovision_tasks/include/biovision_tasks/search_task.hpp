@@ -17,8 +17,9 @@ namespace biovision_tasks
 ///
 /// Visuomotor cycle: when the object memory remembers the object (confidence >= min_memory_confidence),
 /// an excursion there first (GoToTask); otherwise, or when it is not there, exploration (ExplorationPlanner
-/// goals, a new one when reached, trapped or every explore_period) with the head exploring (saliency-driven
-/// attractor dynamics, which is what finds objects). Objective detection: the object recognised in the
+/// goals, a new one when reached, trapped or every explore_period): at each new goal the base stands for
+/// look_time while the head explores (saliency-driven attractor dynamics, which is what finds objects),
+/// then drives there with the head looking ahead (look_time 0: the head explores all the time). Objective detection: the object recognised in the
 /// view; its map position is recorded in the MissionRecord (a later "go to <object>" or the memory use it).
 /// Conclusion: detected → Succeeded; the time-out (the manager's default: search_timeout) → Failed
 /// "object never found".
@@ -53,5 +54,6 @@ private:
   bool has_goal_ = false;
   double goal_time_ = -1e9;
   double trapped_since_ = -1;
+  double look_until_ = -1;  // [s] the base stands and the head explores until then
 };
 }  // namespace biovision_tasks

@@ -139,11 +139,11 @@ void TaskManagerNodelet::reconfigure(TaskManagerConfig& config, uint32_t)
 
 void TaskManagerNodelet::onObjects(const biovision_msgs::RecognizedObjectArrayConstPtr& msg)
 {
-  diagnostics_.clockJumps().observe(msg->header.stamp);
+  diagnostics_.clockJumps().observe(ros::Time::now());  // the clock: stamps lag by the recognition latency
   geometry_msgs::TransformStamped t;
   try
   {
-    t = tf_buffer_.lookupTransform(map_frame_, msg->header.frame_id, msg->header.stamp, ros::Duration(0.05));
+    t = tf_buffer_.lookupTransform(map_frame_, msg->header.frame_id, msg->header.stamp, ros::Duration(0.25));  // map -> odom comes at 10 Hz
   }
   catch (const tf2::TransformException& e)
   {

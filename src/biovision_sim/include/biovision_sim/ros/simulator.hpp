@@ -19,6 +19,8 @@
 #include "biovision_sim/simulator_parameters.hpp"
 #include "biovision_sim/stereo_calibration.hpp"
 #include "biovision_sim/world.hpp"
+#include <biovision_msgs/PlaceObject.h>
+#include <memory>
 
 namespace biovision_sim
 {
@@ -44,6 +46,8 @@ private:
   void advertise();
   void subscribe();
   void publishObjectMarkers();
+  /// sim/place_object: adds or moves an object; refuses bad YAML and objects on the base's footprint.
+  bool placeObject(biovision_msgs::PlaceObject::Request& request, biovision_msgs::PlaceObject::Response& response);
   /// Servos and base by one physics step; returns the new sim time.
   ros::Time stepPhysics();
   Eigen::Isometry3d odomFromBase() const;
@@ -59,8 +63,8 @@ private:
 
   ros::NodeHandle nh_;
   const SimulatorParameters parameters_;
-  const World world_;
-  const SceneRenderer renderer_;  // holds a reference to world_
+  World world_;                              // sim/place_object changes it
+  std::unique_ptr<SceneRenderer> renderer_;  // holds a reference to world_; rebuilt when world_ changes
   const urdf::Model robot_;
   const KinematicChain left_chain_, right_chain_;  // base_link -> stereo_{left,right}_optical
   Servo pan_, tilt_;
@@ -76,6 +80,7 @@ private:
   tf2_ros::TransformBroadcaster tf_;
   tf2_ros::StaticTransformBroadcaster static_tf_;
   ros::Subscriber pan_sub_, tilt_sub_, cmd_sub_;
+  ros::ServiceServer place_srv_;
 
   ros::Time epoch_;           // sim time of step 0 (ROS time 0 means "unset")
   ros::WallTime wall_start_;  // wall time of step 0, for pacing

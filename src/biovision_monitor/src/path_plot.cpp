@@ -1,0 +1,98 @@
+#include "biovision_monitor/path_plot.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <opencv2/imgproc.hpp>
+
+#include "biovision_monitor/drawing.hpp"
+#include "biovision_monitor/occupancy_grid_plot.hpp"
+
+namespace biovision_monitor
+{
+cv::Mat PathPlot::render(const GridView& grid, cv::Point2d origin, const std::vector<cv::Point2d>& path,
+                         const std::vector<Mark>& marks, const std::string& title, cv::Size size) const
+{
+  if (size.width < 64 || size.height < 64)
+    throw std::invalid_argument("PathPlot: a plot needs at least 64 x 64 px");
+  const bool have_grid = grid.width > 0 || grid.height > 0;
+  if (have_grid && !(grid.resolution > 0))
+    throw std::invalid_argument("PathPlot: a grid needs a positive resolution");
+  cv::Mat map_image;
+  if (have_grid)
+    map_image = OccupancyGridPlot::toImage(grid);  // throws for a size mismatch
+
+  // The extent in metres of everything drawn, plus a margin.
+  double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+  auto extend = [&](cv::Point2d p) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y))
+      return;
+    x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
+  };
+  if (have_grid)
+  {
+    extend(origin);
+    extend(origin + cv::Point2d(grid.width * grid.resolution, grid.height * grid.resolution));
+  }
+  for (const auto& p : path)
+    extend(p);
+  for (const auto& m : marks)
+    extend(m.position);
+  cv::Mat image(size, CV_8UC3, colours::kBackground);
+  const int top = 24;  // title strip
+  if (!(x1 >= x0))
+  {
+    drawTitle(image, title);
+    return image;
+  }
+  constexpr double kMargin = 0.5;
+  x0 -= kMargin, y0 -= kMargin, x1 += kMargin, y1 += kMargin;
+  const double scale = std::min(size.width / (x1 - x0), (size.height - top) / (y1 - y0));  // px per m
+  const cv::Point2d offset((size.width - scale * (x1 - x0)) / 2, top + (size.height - top - scale * (y1 - y0)) / 2);
+  auto px = [&](cv::Point2d p) {
+    return cv::Point(int(std::lround(offset.x + (p.x - x0) * scale)), int(std::lround(offset.y + (y1 - p.y) * scale)));
+  };
+
+  if (have_grid)
+  {
+    // Grid row 0 (y = origin.y) is the image's last row; place it by its corners.
+    const cv::Point a = px(origin + cv::Point2d(0, grid.height * grid.resolution));
+    const cv::Point b = px(origin + cv::Point2d(grid.width * grid.resolution, 0));
+    const cv::Rect where(a, b);
+    const cv::Rect inside = where & cv::Rect(0, 0, size.width, size.height);
+    if (inside.area() > 0)
+    {
+      cv::Mat scaled, colour;
+      cv::resize(map_image, scaled, where.size(), 0, 0, cv::INTER_NEAREST);
+      cv::cvtColor(scaled, colour, cv::COLOR_GRAY2BGR);
+      colour(cv::Rect(inside.tl() - where.tl(), inside.size())).copyTo(image(inside));
+    }
+  }
+  std::vector<cv::Point> line;
+  for (const auto& p : path)
+    if (std::isfinite(p.x) && std::isfinite(p.y))
+      line.push_back(px(p));
+  if (line.size() >= 2)
+    cv::polylines(image, line, false, colours::kSum, 2, cv::LINE_8);
+  if (!line.empty())
+  {
+    cv::circle(image, line.front(), 5, colours::kAttraction, cv::FILLED, cv::LINE_8);
+    cv::circle(image, line.back(), 5, colours::kRepulsion, cv::FILLED, cv::LINE_8);
+  }
+  for (const auto& m : marks)
+  {
+    if (!std::isfinite(m.position.x) || !std::isfinite(m.position.y))
+      continue;
+    const cv::Point p = px(m.position);
+    cv::circle(image, p, 6, m.colour, m.filled ? cv::FILLED : 2, cv::LINE_8);
+    cv::putText(image, m.label, p + cv::Point(8, -6), cv::FONT_HERSHEY_SIMPLEX, 0.4, m.colour, 1, cv::LINE_AA);
+  }
+  // 1 m scale bar, bottom left.
+  const cv::Point bar0(10, size.height - 12), bar1(10 + int(std::lround(scale)), size.height - 12);
+  cv::line(image, bar0, bar1, colours::kAxis, 2);
+  cv::putText(image, "1 m", bar1 + cv::Point(6, 4), cv::FONT_HERSHEY_SIMPLEX, 0.4, colours::kAxis, 1, cv::LINE_AA);
+  drawTitle(image, title);
+  return image;
+}
+}  // namespace biovision_monitor

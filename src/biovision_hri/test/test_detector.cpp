@@ -175,7 +175,10 @@ TEST(SlidingWindowDetector, ARegionSmallerThanTheWindowGivesNothingAndHugeOnesAr
 
 TEST(LinearDetectorModel, RoundTripsThroughItsFile)
 {
-  const LinearDetectorModel m = randomModel(13);
+  LinearDetectorModel m = randomModel(13);
+  m.layout.grid_step = 1;  // every stored layout field, not just the defaults
+  m.layout.clip = 0.2;
+  m.layout.epsilon = 0.002;
   const std::string path = tempPath("model.bin");
   m.save(path);
   const LinearDetectorModel back = LinearDetectorModel::load(path);

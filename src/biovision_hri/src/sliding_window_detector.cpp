@@ -170,9 +170,9 @@ std::vector<Detection> SlidingWindowDetector::scan(const cv::Mat& gray, Statisti
       const double side = l.windowSide(cell);
       if (side / sx < p.min_size * 0.98 || side / sx > p.max_size * 1.02)  // rounding of the level size
         continue;
-      if (maps_.size() <= static_cast<size_t>(stats.levels) * 17 + static_cast<size_t>(cell))
-        maps_.resize(static_cast<size_t>(stats.levels) * 17 + static_cast<size_t>(cell) + 1);
-      BlockMap& map = maps_[static_cast<size_t>(stats.levels) * 17 + static_cast<size_t>(cell)];
+      if (maps_.size() <= static_cast<size_t>(stats.levels - 1) * 17 + static_cast<size_t>(cell))
+        maps_.resize(static_cast<size_t>(stats.levels - 1) * 17 + static_cast<size_t>(cell) + 1);
+      BlockMap& map = maps_[static_cast<size_t>(stats.levels - 1) * 17 + static_cast<size_t>(cell)];
       features_.blockMap(cells, cell, map);
       const cv::Mat scores = scoreMap(map, p.stride);
       stats.windows += static_cast<long>(scores.total());

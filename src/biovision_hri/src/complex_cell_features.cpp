@@ -1,5 +1,6 @@
 #include "biovision_hri/complex_cell_features.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -16,23 +17,130 @@ biovision_v1::GaborParameters gaborParameters(const FeatureLayout& layout)
   biovision_v1::GaborParameters p;
   p.wavelengths = {layout.wavelength};
   p.orientations = layout.orientations;
-  p.min_grid_wavelength = 0.0;  // full resolution: windows slide at any pixel
+  // grid_step 1: full resolution; 2: the exact half-resolution grid (lambda / 2 samples per wavelength).
+  p.min_grid_wavelength = layout.grid_step == 1 ? 0.0 : layout.wavelength / layout.grid_step;
   return p;
+}
+
+/// One row of normalised blocks: block x concatenates, for cell rows cy and cell columns cx, the n
+/// orientation sums at cell_rows[cy] + (x + cx * cell) * n; then v / sqrt(|v|^2 + eps2). Cloned for
+/// AVX2 (one binary for every x86-64).
+__attribute__((target_clones("arch=haswell", "default"))) void assembleBlockRow(const float* const* cell_rows,
+                                                                                int block_cells, int n, int cell,
+                                                                                int cols, float eps2, float clip,
+                                                                                float* out)
+{
+  const int channels = block_cells * block_cells * n;
+  for (int x = 0; x < cols; ++x, out += channels)
+  {
+    float* v = out;
+    for (int cy = 0; cy < block_cells; ++cy)
+      for (int cx = 0; cx < block_cells; ++cx, v += n)
+      {
+        const float* c = cell_rows[cy] + static_cast<size_t>(x + cx * cell) * n;
+        for (int o = 0; o < n; ++o)
+          v[o] = c[o];
+      }
+    float partial[8] = {0.f, 0.f, 0.f, 0.f, 0.f, 0.f, 0.f, 0.f};
+    int k = 0;
+    for (; k + 8 <= channels; k += 8)
+      for (int l = 0; l < 8; ++l)
+        partial[l] += out[k + l] * out[k + l];
+    float sum2 = ((partial[0] + partial[4]) + (partial[1] + partial[5])) +
+                 ((partial[2] + partial[6]) + (partial[3] + partial[7]));
+    for (; k < channels; ++k)
+      sum2 += out[k] * out[k];
+    const float scale = 1.f / std::sqrt(sum2 + eps2 + 1e-20f);
+    for (k = 0; k < channels; ++k)
+      out[k] *= scale;
+    if (clip > 0.f)
+    {
+      // L2-Hys: clip, then back to the length the block had after the first step (< 1 for a weak block:
+      // epsilon's shrinkage is kept, noise is not blown up to unit length).
+      const float length = std::sqrt(sum2) * scale;
+      float again = 0.f;
+      for (k = 0; k < channels; ++k)
+      {
+        out[k] = std::min(out[k], clip);
+        again += out[k] * out[k];
+      }
+      const float rescale = length / std::sqrt(again + 1e-20f);
+      for (k = 0; k < channels; ++k)
+        out[k] *= rescale;
+    }
+  }
+}
+
+/// Grid sample (j, k) is pixel (2k, 2j): even pixels copy it, odd ones average their two neighbours (the
+/// last odd row/column repeats the last sample).
+cv::Mat upsampleTwice(const cv::Mat& grid, const cv::Size& size)
+{
+  cv::Mat out(size, CV_32F);
+  const int gw = grid.cols, gh = grid.rows;
+  std::vector<float> row(static_cast<size_t>(size.width));
+  auto expandRow = [&](const float* g, float* o) {
+    for (int x = 0; x < size.width; ++x)
+    {
+      const int k = x / 2;
+      o[x] = (x % 2 == 0 || k + 1 >= gw) ? g[std::min(k, gw - 1)] : 0.5f * (g[k] + g[k + 1]);
+    }
+  };
+  for (int y = 0; y < size.height; ++y)
+  {
+    const int j = y / 2;
+    float* o = out.ptr<float>(y);
+    if (y % 2 == 0 || j + 1 >= gh)
+      expandRow(grid.ptr<float>(std::min(j, gh - 1)), o);
+    else
+    {
+      expandRow(grid.ptr<float>(j), o);
+      expandRow(grid.ptr<float>(j + 1), row.data());
+      for (int x = 0; x < size.width; ++x)
+        o[x] = 0.5f * (o[x] + row[static_cast<size_t>(x)]);
+    }
+  }
+  return out;
 }
 }  // namespace
 
-ComplexCellFeatures::ComplexCellFeatures(const FeatureLayout& layout) : layout_(layout), bank_(gaborParameters(layout))
+ComplexCellFeatures::ComplexCellFeatures(const FeatureLayout& layout) : layout_(layout), gabor_(gaborParameters(layout))
 {
+  gabor_.validate();
+}
+
+biovision_v1::SimpleCellBank& ComplexCellFeatures::bankFor(const cv::Size& size)
+{
+  for (size_t i = 0; i < banks_.size(); ++i)
+    if (banks_[i].first == size)
+    {
+      std::rotate(banks_.begin(), banks_.begin() + static_cast<long>(i), banks_.begin() + static_cast<long>(i) + 1);
+      return *banks_.front().second;
+    }
+  if (banks_.size() >= kCachedSizes)
+    banks_.pop_back();
+  banks_.insert(banks_.begin(), {size, std::make_unique<biovision_v1::SimpleCellBank>(gabor_)});
+  return *banks_.front().second;
 }
 
 std::vector<cv::Mat> ComplexCellFeatures::complexCells(const cv::Mat& gray)
 {
   if (gray.empty() || gray.type() != CV_32FC1)
     throw std::invalid_argument("ComplexCellFeatures: expected a non-empty CV_32FC1 image");
-  return bank_.compute(gray).front().complexCells();
+  std::vector<cv::Mat> cells = bankFor(gray.size()).compute(gray).front().complexCells();
+  if (cells.front().size() != gray.size())
+    for (cv::Mat& c : cells)
+      c = upsampleTwice(c, gray.size());
+  return cells;
 }
 
 BlockMap ComplexCellFeatures::blockMap(const std::vector<cv::Mat>& cells, int cell_size) const
+{
+  BlockMap map;
+  blockMap(cells, cell_size, map);
+  return map;
+}
+
+void ComplexCellFeatures::blockMap(const std::vector<cv::Mat>& cells, int cell_size, BlockMap& map) const
 {
   if (cell_size < 1)
     throw std::invalid_argument("ComplexCellFeatures::blockMap: cell_size must be >= 1, got " +
@@ -40,25 +148,28 @@ BlockMap ComplexCellFeatures::blockMap(const std::vector<cv::Mat>& cells, int ce
   if (static_cast<int>(cells.size()) != layout_.orientations)
     throw std::invalid_argument("ComplexCellFeatures::blockMap: expected " + std::to_string(layout_.orientations) +
                                 " complex-cell maps, got " + std::to_string(cells.size()));
-  BlockMap map;
   map.cell_size = cell_size;
   map.channels = layout_.blockLength();
   const cv::Size size = cells.front().size();
   const int block_side = layout_.block_cells * cell_size;
   const int rows = size.height - block_side + 1, cols = size.width - block_side + 1;
   if (rows <= 0 || cols <= 0)
-    return map;
+  {
+    map.data.release();
+    return;
+  }
 
   // Cell sums at every top-left position from one integral image per orientation:
   // cell(y, x)[o] = sum of C_o over [x, x + cell) x [y, y + cell).
   const int n = layout_.orientations;
   const int cell_rows = size.height - cell_size + 1, cell_cols = size.width - cell_size + 1;
-  cv::Mat cell_sums(cell_rows, cell_cols, CV_32FC(n));
+  cv::Mat& cell_sums = cell_sums_;  // reused: fresh pages of a large map cost more than filling them
+  cell_sums.create(cell_rows, cell_cols, CV_32FC(n));
   for (int o = 0; o < n; ++o)
   {
     if (cells[o].type() != CV_32FC1 || cells[o].size() != size)
       throw std::invalid_argument("ComplexCellFeatures::blockMap: complex-cell maps must be CV_32FC1 of one size");
-    cv::Mat integral;
+    cv::Mat& integral = integral_;
     cv::integral(cells[o], integral, CV_64F);
     for (int y = 0; y < cell_rows; ++y)
     {
@@ -75,33 +186,17 @@ BlockMap ComplexCellFeatures::blockMap(const std::vector<cv::Mat>& cells, int ce
   const double eps = layout_.epsilon * block_side * block_side;
   const float eps2 = static_cast<float>(eps * eps);
   map.data.create(rows, cols, CV_32FC(channels));
+  const int bc = layout_.block_cells;
   cv::parallel_for_(cv::Range(0, rows), [&](const cv::Range& range) {
+    std::vector<const float*> cell_rows_of_block(static_cast<size_t>(bc));
     for (int y = range.start; y < range.end; ++y)
     {
-      float* out = map.data.ptr<float>(y);
-      for (int x = 0; x < cols; ++x, out += channels)
-      {
-        float* v = out;
-        for (int cy = 0; cy < layout_.block_cells; ++cy)
-        {
-          const float* row = cell_sums.ptr<float>(y + cy * cell_size);
-          for (int cx = 0; cx < layout_.block_cells; ++cx, v += n)
-          {
-            const float* c = row + static_cast<size_t>(x + cx * cell_size) * n;
-            for (int o = 0; o < n; ++o)
-              v[o] = c[o];
-          }
-        }
-        float sum2 = 0.f;
-        for (int k = 0; k < channels; ++k)
-          sum2 += out[k] * out[k];
-        const float scale = 1.f / std::sqrt(sum2 + eps2 + 1e-20f);
-        for (int k = 0; k < channels; ++k)
-          out[k] *= scale;
-      }
+      for (int cy = 0; cy < bc; ++cy)
+        cell_rows_of_block[static_cast<size_t>(cy)] = cell_sums.ptr<float>(y + cy * cell_size);
+      assembleBlockRow(cell_rows_of_block.data(), bc, n, cell_size, cols, eps2, static_cast<float>(layout_.clip),
+                       map.data.ptr<float>(y));
     }
   });
-  return map;
 }
 
 void ComplexCellFeatures::window(const BlockMap& map, int x, int y, float* out) const

@@ -27,5 +27,9 @@ void FeatureLayout::validate() const
         "window_blocks must be in [1, 12], got " + std::to_string(window_blocks));
   check(std::isfinite(epsilon) && epsilon >= 0.0 && epsilon <= 1.0,
         "epsilon must be in [0, 1], got " + std::to_string(epsilon));
+  check(std::isfinite(clip) && clip >= 0.0 && clip <= 1.0, "clip must be in [0, 1], got " + std::to_string(clip));
+  check(grid_step == 1 || (grid_step == 2 && wavelength >= 4.0),
+        "grid_step must be 1, or 2 with wavelength >= 4 px, got " + std::to_string(grid_step) + " (wavelength " +
+            std::to_string(wavelength) + ")");
 }
 }  // namespace biovision_hri

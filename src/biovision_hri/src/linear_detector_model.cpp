@@ -11,7 +11,7 @@ namespace biovision_hri
 namespace
 {
 const char* const kMagic = "BVHRIDET";
-constexpr uint32_t kVersion = 1;
+constexpr uint32_t kVersion = 2;  // 2: FeatureLayout::grid_step and clip
 }  // namespace
 
 void LinearDetectorModel::validate() const
@@ -48,6 +48,8 @@ void LinearDetectorModel::save(const std::string& path) const
   w.put<int32_t>(layout.block_cells);
   w.put<int32_t>(layout.window_blocks);
   w.put<double>(layout.epsilon);
+  w.put<int32_t>(layout.grid_step);
+  w.put<double>(layout.clip);
   w.putArray(weights.data(), weights.size());
   w.put<float>(bias);
   w.putString(provenance);
@@ -66,6 +68,8 @@ LinearDetectorModel LinearDetectorModel::load(const std::string& path)
                                                                    m.layout.block_cells = r.get<int32_t>();
                                                                    m.layout.window_blocks = r.get<int32_t>();
                                                                    m.layout.epsilon = r.get<double>();
+                                                                   m.layout.grid_step = r.get<int32_t>();
+                                                                   m.layout.clip = r.get<double>();
                                                                    m.weights = r.getArray<float>(1u << 20);
                                                                    m.bias = r.get<float>();
                                                                    m.provenance = r.getString(1u << 16);

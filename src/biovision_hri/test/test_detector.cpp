@@ -1,5 +1,6 @@
 #include <cstdio>
 #include <fstream>
+#include <set>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
@@ -116,6 +117,33 @@ TEST(SlidingWindowDetector, TheScanEqualsABruteForceDotProductPerWindow)
     }
 }
 
+TEST(SlidingWindowDetector, ADetectionsDenseFeaturesGiveItsScore)
+{
+  // Hard-negative mining reads a detection's features from the last scan's block maps: w . x + b must be
+  // the score the scan gave it, at every level and cell size.
+  const LinearDetectorModel model = randomModel(9);
+  SlidingWindowDetector::Parameters p;
+  p.threshold = -5.0;
+  p.max_size = 150.0;
+  p.max_detections = 1000;
+  p.nms_overlap = 0.3;
+  SlidingWindowDetector detector(model, p);
+  const std::vector<Detection> found = detector.detect(texture(cv::Size(160, 120), 10));
+  ASSERT_GT(found.size(), 10u);
+  std::set<int> levels;
+  std::vector<float> x(model.layout.featureCount());
+  for (const Detection& d : found)
+  {
+    detector.lastFeatures(d, x.data());
+    EXPECT_NEAR(model.score(x.data()), d.score, 1e-3) << "level " << d.level << " cell " << d.cell_size;
+    levels.insert(d.level);
+  }
+  EXPECT_GE(levels.size(), 2u) << "detections from more than one pyramid level";
+  Detection stranger = found.front();
+  stranger.level = 40;
+  EXPECT_THROW(detector.lastFeatures(stranger, x.data()), std::out_of_range);
+}
+
 TEST(SlidingWindowDetector, FindsATemplateWhereItWasPastedAtTwoScales)
 {
   // A matched filter: w = the template's features minus the mean of background features.
@@ -175,7 +203,10 @@ TEST(SlidingWindowDetector, ARegionSmallerThanTheWindowGivesNothingAndHugeOnesAr
 
 TEST(LinearDetectorModel, RoundTripsThroughItsFile)
 {
-  const LinearDetectorModel m = randomModel(13);
+  LinearDetectorModel m = randomModel(13);
+  m.layout.grid_step = 1;  // every stored layout field, not just the defaults
+  m.layout.clip = 0.2;
+  m.layout.epsilon = 0.002;
   const std::string path = tempPath("model.bin");
   m.save(path);
   const LinearDetectorModel back = LinearDetectorModel::load(path);

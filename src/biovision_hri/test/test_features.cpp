@@ -76,6 +76,73 @@ TEST(FeatureLayout, ValidateNamesTheFieldOutOfRange)
   l = FeatureLayout();
   l.orientations = 13;
   EXPECT_THROW(l.validate(), std::invalid_argument);
+  l = FeatureLayout();
+  l.wavelength = 3.0;  // a half-resolution grid needs lambda >= 4 (2 samples per wavelength)
+  EXPECT_THROW(l.validate(), std::invalid_argument);
+  l.grid_step = 1;
+  EXPECT_NO_THROW(l.validate());
+  l.grid_step = 3;
+  EXPECT_THROW(l.validate(), std::invalid_argument);
+  l = FeatureLayout();
+  l.clip = 1.5;
+  EXPECT_THROW(l.validate(), std::invalid_argument);
+}
+
+TEST(ComplexCellFeatures, TheHalfResolutionGridGivesNearlyTheFullResolutionFeatures)
+{
+  // grid_step 2 (the default, for speed) against grid_step 1: the complex cells differ by the linear
+  // interpolation only, and the pooled, normalised window features barely.
+  FeatureLayout full_layout;
+  full_layout.grid_step = 1;
+  ComplexCellFeatures full{full_layout}, half{FeatureLayout()};
+  const cv::Mat image = texture(cv::Size(96, 80), 6);
+  const std::vector<cv::Mat> a = full.complexCells(image), b = half.complexCells(image);
+  ASSERT_EQ(a.size(), b.size());
+  double peak = 0, worst = 0;
+  for (size_t o = 0; o < a.size(); ++o)
+  {
+    ASSERT_EQ(b[o].size(), image.size());
+    double hi = 0;
+    cv::minMaxLoc(a[o], nullptr, &hi);
+    peak = std::max(peak, hi);
+    worst = std::max(worst, cv::norm(a[o], b[o], cv::NORM_INF));
+  }
+  EXPECT_LT(worst, 0.35 * peak) << "interpolated complex cells far from the full-resolution ones";
+  EXPECT_GT(worst, 0.0) << "the two grids should not be identical";
+  std::vector<float> fa(full_layout.featureCount()), fb(full_layout.featureCount());
+  full.window(full.blockMap(a, 6), 20, 16, fa.data());
+  half.window(half.blockMap(b, 6), 20, 16, fb.data());
+  double dot = 0, na = 0, nb = 0;
+  for (size_t i = 0; i < fa.size(); ++i)
+  {
+    dot += fa[i] * fb[i];
+    na += fa[i] * fa[i];
+    nb += fb[i] * fb[i];
+  }
+  EXPECT_GT(dot / std::sqrt(na * nb), 0.98) << "window features: cosine similarity";
+}
+
+TEST(ComplexCellFeatures, L2HysClipsLargeValuesAndKeepsTheBlockLength)
+{
+  FeatureLayout plain, hys;
+  hys.clip = 0.2;
+  ComplexCellFeatures f{plain}, g{hys};
+  cv::Mat image(60, 60, CV_32F, cv::Scalar(0.2));
+  image.colRange(30, 60).setTo(0.8);  // one strong edge: a few dominant values per block
+  const BlockMap a = f.blockMap(f.complexCells(image), 6), b = g.blockMap(g.complexCells(image), 6);
+  const float* va = a.at(20, 20);
+  const float* vb = b.at(20, 20);
+  double na = 0, nb = 0, max_a = 0, max_b = 0;
+  for (int k = 0; k < a.channels; ++k)
+  {
+    na += va[k] * va[k];
+    nb += vb[k] * vb[k];
+    max_a = std::max(max_a, static_cast<double>(va[k]));
+    max_b = std::max(max_b, static_cast<double>(vb[k]));
+  }
+  EXPECT_NEAR(std::sqrt(nb), std::sqrt(na), 1e-4);
+  EXPECT_GT(max_a, 0.2 * std::sqrt(na)) << "the edge block should have values above the clip";
+  EXPECT_LT(max_b, max_a) << "clipping lowers the largest value";
 }
 
 TEST(ComplexCellFeatures, APatchGivesOneRowOf1152Values)

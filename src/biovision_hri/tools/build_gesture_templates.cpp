@@ -4,6 +4,9 @@
 // (StoredFile "BVOBJMEM": checksummed, atomic, tied to the descriptor model).
 
 #include <iostream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
 
 #include <ros/package.h>
 
@@ -17,7 +20,10 @@ int main(int argc, char** argv)
 {
   std::string out, data = hriDataRoot("../shared"), set = "linto", json_path;
   std::string descriptor_model = ros::package::getPath("biovision_recognition") + "/models/v1_ldahash_128.bin";
-  int rejection = 20, seed = 3;
+  int rejection = 100, seed = 3;
+  // Triesch's postures are ASL letters: B is the open palm, D the raised index, V the V sign, A the fist;
+  // renamed to the node's gesture names (the `actions` table reads these). Others keep their letter.
+  std::string label_map = "A=fist,B=palm,D=index_up,V=v";
   biovision_common::ToolOptions options("build_gesture_templates",
                                         "Builds the gesture templates of the hri node from the template part of a "
                                         "gesture set\n(LinTO: earlier session; Triesch: first half of the people) "
@@ -27,9 +33,13 @@ int main(int argc, char** argv)
   app.add_option("--set", set, "linto or triesch")->check(CLI::IsMember({"linto", "triesch"}));
   app.add_option("--data", data, "the hri data folder ($BIOVISION_SHARED/data/hri)");
   app.add_option("--descriptor-model", descriptor_model, "biovision_recognition descriptor model");
-  app.add_option("--rejection", rejection, "rejection templates ('none') from random training-scene patches")
+  app.add_option(
+         "--rejection", rejection,
+         "rejection templates ('none') from random training-scene patches (100: chosen with gesture_eval --validation)")
       ->check(biovision_common::kNonNegative);
   app.add_option("--seed", seed, "seed of the rejection patches");
+  app.add_option("--label-map", label_map,
+                 "renames of the set's labels, FROM=TO,... (default: Triesch's ASL letters to the node's names)");
   app.add_option("--json", json_path, "write a summary");
   options.parse(argc, argv);
   try
@@ -38,7 +48,20 @@ int main(int argc, char** argv)
         biovision_recognition::DescriptorModel::load(descriptor_model));
     GestureRecognizer recognizer(descriptor, GestureRecognizer::Parameters());
     const auto samples = set == "linto" ? lintoSamples(data) : trieschSamples(data);
-    nlohmann::ordered_json per_label;
+    std::map<std::string, std::string> renames;
+    std::stringstream pairs(label_map);
+    for (std::string pair; std::getline(pairs, pair, ',');)
+    {
+      const size_t eq = pair.find('=');
+      if (eq == std::string::npos || eq == 0 || eq + 1 == pair.size())
+        throw std::invalid_argument("--label-map: expected FROM=TO, got '" + pair + "'");
+      renames[pair.substr(0, eq)] = pair.substr(eq + 1);
+    }
+    auto renamed = [&](const std::string& label) {
+      const auto it = renames.find(label);
+      return it == renames.end() ? label : it->second;
+    };
+    nlohmann::ordered_json per_label = nlohmann::ordered_json::object();  // value() refuses a null
     for (const auto& g : samples)
     {
       if (!g.template_part)
@@ -50,9 +73,10 @@ int main(int argc, char** argv)
         cv::copyMakeBorder(image, image, 20, 20, 20, 20, cv::BORDER_REPLICATE);
         box = cv::Rect(20, 20, image.cols - 40, image.rows - 40);
       }
-      const size_t k = recognizer.addTemplate(image, box, g.label);
-      per_label[g.label] = per_label.value(g.label, 0) + 1;
-      std::cerr << "build_gesture_templates: " << g.label << " <- " << g.file << " (" << k << " keypoints)\n";
+      const std::string label = renamed(g.label);
+      const size_t k = recognizer.addTemplate(image, box, label);
+      per_label[label] = per_label.value(label, 0) + 1;
+      std::cerr << "build_gesture_templates: " << label << " <- " << g.file << " (" << k << " keypoints)\n";
     }
     std::vector<cv::Mat> scenes;
     for (const auto& f : splitPart(sceneFiles(data), Split::Train))
@@ -64,13 +88,16 @@ int main(int argc, char** argv)
     std::cerr << "build_gesture_templates: wrote " << out << ": " << recognizer.templates().views().size()
               << " templates, " << recognizer.templates().codeCount() << " codes\n";
     if (!json_path.empty())
-      biovision_common::writeJsonFile(json_path, nlohmann::ordered_json{{"tool", "build_gesture_templates"},
-                                                                        {"command", options.command()},
-                                                                        {"set", set},
-                                                                        {"templates_per_label", per_label},
-                                                                        {"rejection_templates", rejection},
-                                                                        {"codes", recognizer.templates().codeCount()},
-                                                                        {"out", out}});
+      biovision_common::writeJsonFile(
+          json_path, nlohmann::ordered_json{{"tool", "build_gesture_templates"},
+                                            {"command", options.command()},
+                                            {"set", set},
+                                            {"label_map", label_map},
+                                            {"min_matches_default", GestureRecognizer::Parameters().min_matches},
+                                            {"templates_per_label", per_label},
+                                            {"rejection_templates", rejection},
+                                            {"codes", recognizer.templates().codeCount()},
+                                            {"out", out}});
   }
   catch (const std::exception& e)
   {

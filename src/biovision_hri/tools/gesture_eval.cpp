@@ -21,7 +21,7 @@ int main(int argc, char** argv)
 {
   std::string data = hriDataRoot("../shared"), set = "linto", json_path;
   std::string descriptor_model = ros::package::getPath("biovision_recognition") + "/models/v1_ldahash_128.bin";
-  int rejection = 20, free_regions = 200, seed = 3;
+  int rejection = 100, free_regions = 200, seed = 3;
   bool validation = false;
   GestureRecognizer::Parameters p;
   biovision_common::ToolOptions options("gesture_eval",
@@ -32,7 +32,8 @@ int main(int argc, char** argv)
   app.add_option("--set", set, "linto or triesch")->check(CLI::IsMember({"linto", "triesch"}));
   app.add_option("--data", data, "the hri data folder ($BIOVISION_SHARED/data/hri)");
   app.add_option("--descriptor-model", descriptor_model, "biovision_recognition descriptor model");
-  app.add_option("--rejection", rejection, "rejection templates from random training-scene patches")
+  app.add_option("--rejection", rejection,
+                 "rejection templates from random training-scene patches (100: chosen with --validation, README)")
       ->check(biovision_common::kNonNegative);
   app.add_option("--free-regions", free_regions, "gesture-free test regions from held-out scenes")
       ->check(biovision_common::kNonNegative);

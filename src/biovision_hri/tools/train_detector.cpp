@@ -44,6 +44,7 @@ int main(int argc, char** argv)
   std::string kind = "face", out, json_path, data = hriDataRoot("../shared"), split_name = "train";
   int max_positives = 0, random_negatives = 10000, hard_rounds = 1, hard_per_image = 100, seed = 1;
   double positive_weight = 0.0;
+  std::string hard_features = "dense";
   double min_size = 42, max_size = 300;
   FeatureLayout layout;
   LinearSvmTrainer::Parameters svm;
@@ -66,6 +67,10 @@ int main(int argc, char** argv)
       ->check(biovision_common::kNonNegative);
   app.add_option("--hard-per-image", hard_per_image, "at most this many hard negatives per scene and round")
       ->check(biovision_common::kPositive);
+  app.add_option("--hard-features", hard_features,
+                 "hard negatives' features: dense (read from the scan's block maps, what was scored; default) or "
+                 "crop (the window re-cropped and extracted alone, its borders reflected: the first version)")
+      ->check(CLI::IsMember({"dense", "crop"}));
   app.add_option("--min-size", min_size, "smallest window scanned while mining [px]")
       ->check(biovision_common::kPositive);
   app.add_option("--max-size", max_size, "largest window scanned while mining [px]")
@@ -81,6 +86,9 @@ int main(int argc, char** argv)
   app.add_option("--wavelength", layout.wavelength, "Gabor wavelength lambda [px] (thesis: 4 best)");
   app.add_option("--orientations", layout.orientations, "N_theta");
   app.add_option("--epsilon", layout.epsilon, "L2 block normalisation epsilon per pixel");
+  app.add_option("--clip", layout.clip, "L2-Hys clipping of normalised block values (0 = plain L2, the thesis)");
+  app.add_option("--grid-step", layout.grid_step, "Gabor response grid step (1 = full resolution, 2 = half)");
+  app.add_option("--cell-size", layout.cell_size, "pooling cell side at the base scale [px] (thesis: 6)");
   app.add_option("--seed", seed, "random negatives' seed");
   app.add_option("--json", json_path, "write a summary (counts, accuracies, time)");
   options.parse(argc, argv);
@@ -152,12 +160,21 @@ int main(int argc, char** argv)
       scan.max_detections = hard_per_image;
       SlidingWindowDetector detector(model, scan);
       std::vector<cv::Mat> hard;
+      cv::Mat hard_rows;
       long windows = 0;
       for (size_t s = 0; s < scenes.size(); ++s)
       {
         SlidingWindowDetector::Statistics stats;
         for (const Detection& d : detector.detect(scenes[s], cv::Rect(), &stats))
         {
+          if (hard_features == "dense")
+          {
+            cv::Mat row(1, layout.featureCount(), CV_32F);
+            detector.lastFeatures(d, row.ptr<float>());
+            hard_rows.push_back(row);
+            hard.push_back(cv::Mat());
+            continue;
+          }
           const cv::Rect box = cv::Rect(d.box) & cv::Rect(0, 0, scenes[s].cols, scenes[s].rows);
           if (box.width >= 8 && box.height >= 8)
             hard.push_back(scenes[s](box));
@@ -167,7 +184,7 @@ int main(int argc, char** argv)
           std::cerr << "train_detector: round " << round << ": scene " << s + 1 << "/" << scenes.size() << ", "
                     << hard.size() << " hard negatives, " << secondsSince(start) << " s\n";
       }
-      append(samples, labels, patchFeatureRows(layout, hard, false), -1);
+      append(samples, labels, hard_features == "dense" ? hard_rows : patchFeatureRows(layout, hard, false), -1);
       fit();
       rounds.push_back({{"round", round},
                         {"windows_scanned", windows},
@@ -203,7 +220,15 @@ int main(int argc, char** argv)
       doc["bias"] = svm.bias;
       doc["positive_weight"] = svm.positive_weight;
       doc["features"] = layout.featureCount();
+      doc["layout"] = {{"wavelength", layout.wavelength},
+                       {"orientations", layout.orientations},
+                       {"cell_size", layout.cell_size},
+                       {"epsilon", layout.epsilon},
+                       {"clip", layout.clip},
+                       {"grid_step", layout.grid_step}};
       doc["rounds"] = rounds;
+      doc["hard_features"] = hard_features;
+      doc["hard_rounds"] = hard_rounds;
       doc["seconds"] = secondsSince(start);
       doc["model"] = out;
       biovision_common::writeJsonFile(json_path, doc);

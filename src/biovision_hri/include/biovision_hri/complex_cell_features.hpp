@@ -1,5 +1,7 @@
 #pragma once
 
+#include <memory>
+#include <utility>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -19,7 +21,10 @@ namespace biovision_hri
 /// normalised block at every pixel, and a window at (x, y) is the blocks at (x + bx*cell, y + by*cell);
 /// window() equals extracting the window on its own (tested), without recomputing anything.
 ///
-/// Not thread-safe (the Gabor bank caches its spectra per image size): one instance per thread.
+/// Not thread-safe (the Gabor banks cache their kernel spectra per image size): one instance per thread.
+/// One bank is kept per image size (up to kCachedSizes, least recently used dropped), so the levels of a
+/// pyramid that repeats every frame never re-plan their kernel spectra (re-planning cost ~8 kernel DFTs
+/// per level and frame: most of the frame time before).
 class ComplexCellFeatures
 {
 public:
@@ -33,6 +38,8 @@ public:
   /// Dense normalised blocks for pooling cells of `cell_size` px. Empty when the image is smaller than
   /// one block. Throws std::invalid_argument for cell_size < 1 or cells of the wrong count/type.
   BlockMap blockMap(const std::vector<cv::Mat>& cells, int cell_size) const;
+  /// The same into `map`, reusing its memory when the size repeats (the detector's per-frame maps).
+  void blockMap(const std::vector<cv::Mat>& cells, int cell_size, BlockMap& map) const;
 
   /// Writes the featureCount() values of the window whose top-left pixel is (x, y) to `out`. The window
   /// must lie inside the map (x + windowSide(cell) <= image width); throws std::out_of_range otherwise.
@@ -45,8 +52,16 @@ public:
 
   const FeatureLayout& layout() const { return layout_; }
 
+  /// Image sizes whose kernel spectra are kept.
+  static constexpr size_t kCachedSizes = 16;
+
 private:
+  biovision_v1::SimpleCellBank& bankFor(const cv::Size& size);
+
   FeatureLayout layout_;
-  biovision_v1::SimpleCellBank bank_;
+  biovision_v1::GaborParameters gabor_;
+  mutable cv::Mat cell_sums_, integral_;  ///< blockMap()'s scratch, reused
+  /// Most recently used first.
+  std::vector<std::pair<cv::Size, std::unique_ptr<biovision_v1::SimpleCellBank>>> banks_;
 };
 }  // namespace biovision_hri

@@ -8,7 +8,7 @@
 namespace biovision_hri
 {
 /// A trained linear window classifier: score = w . x + bias over FeatureLayout features (thesis §2.3,
-/// LIBLINEAR). Stored as a biovision_common::StoredFile ("BVHRIDET", version 1: magic, version,
+/// LIBLINEAR). Stored as a biovision_common::StoredFile ("BVHRIDET", version 2 (v1 lacked grid_step): magic, version,
 /// byte-order mark, size, CRC-32; written atomically), so a truncated, corrupt, foreign or other-version
 /// file is refused instead of silently scoring garbage.
 struct LinearDetectorModel

@@ -56,6 +56,13 @@ public:
   /// Every window score before thresholding and NMS, for evaluation (FPPW on negative images).
   std::vector<Detection> scoreAllWindows(const cv::Mat& gray, Statistics* statistics = nullptr);
 
+  /// The window features (FeatureLayout order, featureCount() values to `out`) of a detection of the last
+  /// detect() or scoreAllWindows() on the whole image, read from that scan's dense block maps: exactly the
+  /// vector the score came from, image context included (for hard-negative mining; a re-cropped patch
+  /// would see its borders reflected instead). Throws std::out_of_range when the detection is not from
+  /// the last scan's maps.
+  void lastFeatures(const Detection& detection, float* out) const;
+
   /// Scores of the windows of one block map on the stride grid: (rows, cols) = number of window
   /// positions; entry (j, i) is the window with top-left pixel (i * stride, j * stride). Empty when no
   /// window fits.
@@ -72,5 +79,7 @@ private:
   LinearDetectorModel model_;
   Parameters parameters_;
   ComplexCellFeatures features_;
+  /// Block maps per (level, cell size), kept between frames so their memory is reused.
+  std::vector<BlockMap> maps_;
 };
 }  // namespace biovision_hri

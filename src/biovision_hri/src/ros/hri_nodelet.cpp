@@ -52,7 +52,7 @@ void HriNodelet::onInitNodelet()
   std::string face_model, hand_model, templates, descriptor_model;
   pnh.param<std::string>("face_model", face_model, share + "/models/face_detector.bin");
   pnh.param<std::string>("hand_model", hand_model, share + "/models/hand_detector.bin");
-  pnh.param<std::string>("gesture_templates", templates, "");
+  pnh.param<std::string>("gesture_templates", templates, share + "/models/gesture_templates.bin");  // "" = off
   pnh.param<std::string>("descriptor_model", descriptor_model,
                          ros::package::getPath("biovision_recognition") + "/models/v1_ldahash_128.bin");
   pnh.param("max_input_age", max_input_age_, 0.5);

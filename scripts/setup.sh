@@ -26,8 +26,12 @@ PACKAGES=(
   librosbag-dev liburdf-dev ros-robot-state-publisher
   # image pipeline peers and viewers
   ros-stereo-image-proc ros-image-proc rviz xvfb xauth
-  # real images for the demo that need no ../shared (/usr/share/doc/opencv-doc/examples/data)
+  # real images for the demo that need no ../shared (/usr/share/doc/opencv-doc/examples/data); also the
+  # descriptor's held-out evaluation material (graf1/graf3 + H1to3p, never trained on)
   opencv-doc
+  # biovision_recognition: image collections in the descriptor's training corpus and held-out split
+  # (train_descriptor/descriptor_eval --images; data only)
+  visp-images-data python3-skimage
   # libraries the ROS-free cores use
   libopencv-dev libopencv-contrib-dev libeigen3-dev liblinear-dev libyaml-cpp-dev
   # biovision_common: tool options, JSON, CRC

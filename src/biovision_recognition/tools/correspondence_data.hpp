@@ -5,17 +5,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <map>
 #include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include <opencv2/core/persistence.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "biovision_recognition/pair_sampler.hpp"
 #include "biovision_common/eval/middlebury_dataset.hpp"
+#include "biovision_common/eval/source_split.hpp"
 #include "biovision_v1/input_image.hpp"
 
 using biovision_common::MiddleburyDataset;
@@ -30,9 +34,22 @@ struct CorrespondencePair
   cv::Mat disparity, valid;  // stereo ground truth (left = A)
 };
 
-/// Which part of a dataset: scenes in name order alternate train, test, train, ...
-inline bool inPart(size_t index, const std::string& part)
+/// The descriptor's split by image source (issue #22): Middlebury scenes, image collections' sources
+/// and flow sequences are dev (training) or held out (evaluation) by name, half each. Aloe and
+/// RubberWhale are held out whatever their hash: Debian's opencv-doc ships copies of them
+/// (aloeL/aloeR, rubberwhale1/2), and opencv-doc is evaluation material.
+inline const biovision_common::SourceSplit& descriptorSplit()
 {
+  static const biovision_common::SourceSplit split("biovision-descriptor", 0.5, {"aloe", "rubberwhale"});
+  return split;
+}
+
+/// Which part of a dataset. "train"/"test": scenes in name order alternate train, test, train, ... (the
+/// committed models up to session 4); "dev"/"heldout": descriptorSplit() by scene name; "all".
+inline bool inPart(size_t index, const std::string& part, const std::string& source = std::string())
+{
+  if (part == "dev" || part == "heldout")
+    return descriptorSplit().isTest(source) == (part == "heldout");
   return part == "all" || (part == "train" && index % 2 == 0) || (part == "test" && index % 2 == 1);
 }
 
@@ -58,7 +75,7 @@ inline std::vector<CorrespondencePair> loadCorrespondencePairs(const std::string
   {
     const auto scenes = biovision_common::MiddleburyDataset::load(stereo_dir);
     for (size_t i = 0; i < scenes.size(); ++i)
-      if (inPart(i, part))
+      if (inPart(i, part, scenes[i].name))
         pairs.push_back({"stereo/" + scenes[i].name, scenes[i].left, scenes[i].right, cv::Mat(), scenes[i].ground_truth,
                          scenes[i].nonoccluded});
   }
@@ -146,6 +163,161 @@ inline std::vector<CorrespondencePair> syntheticViewpoints(const std::vector<Cor
       warpAll(pair.b, pair.name + "b");
   }
   return out;
+}
+
+/// One image of a collection and the source it belongs to.
+struct SourceImage
+{
+  std::string source;  ///< SourceSplit key: the first path component under the collection's folder
+  std::string path;
+};
+
+/// Every image (png, jpg, ppm, pgm) under each folder, grouped by source: a file directly in the folder
+/// is its own source (its stem), a subfolder is one source (a sequence, a scene, an object). At most
+/// `per_source` images per source, evenly spaced in name order. Only sources in `part` of
+/// descriptorSplit() ("dev", "heldout", "all"). Paths under /usr/share/doc/opencv-doc are refused: those
+/// images are evaluation material. Throws std::runtime_error naming a folder that does not exist.
+inline std::vector<SourceImage> listSourceImages(const std::vector<std::string>& folders, int per_source,
+                                                 const std::string& part)
+{
+  namespace fs = std::filesystem;
+  std::vector<SourceImage> out;
+  for (const auto& folder : folders)
+  {
+    if (!fs::is_directory(folder))
+      throw std::runtime_error(folder + ": not a folder");
+    if (fs::weakly_canonical(folder).string().rfind("/usr/share/doc/opencv-doc", 0) == 0)
+      throw std::runtime_error(folder + ": opencv-doc images are evaluation material, never training");
+    std::map<std::string, std::vector<std::string>> by_source;
+    for (const auto& e : fs::recursive_directory_iterator(folder))
+    {
+      if (!e.is_regular_file())
+        continue;
+      std::string ext = e.path().extension().string();
+      std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+      if (ext != ".png" && ext != ".jpg" && ext != ".jpeg" && ext != ".ppm" && ext != ".pgm")
+        continue;
+      const fs::path relative = fs::relative(e.path(), folder);
+      const std::string source = std::distance(relative.begin(), relative.end()) > 1 ? relative.begin()->string()
+                                                                                     : relative.stem().string();
+      by_source[source].push_back(e.path().string());
+    }
+    for (auto& [source, files] : by_source)
+    {
+      const bool heldout = descriptorSplit().isTest(source);
+      if ((part == "dev" && heldout) || (part == "heldout" && !heldout))
+        continue;
+      std::sort(files.begin(), files.end());
+      const size_t n = std::min(files.size(), static_cast<size_t>(std::max(1, per_source)));
+      for (size_t k = 0; k < n; ++k)
+        out.push_back({biovision_common::SourceSplit::key(source), files[(2 * k + 1) * files.size() / (2 * n)]});
+    }
+  }
+  return out;
+}
+
+/// A synthetic view of `image`: a homography with the ASIFT camera-tilt model (tilt t along a random
+/// direction, log-uniform in [1, max_tilt]; ASIFT samples t up to 4 = 75.5 degrees), scale in
+/// [1/1.3, 1.3], in-plane turn within +-10 degrees (the descriptors are upright), and a perspective term
+/// (the far side up to 15% smaller), about the centre; with `photometric`, view B also gets a gain
+/// (0.6-1.4), gamma (0.7-1.4), offset (+-20), and half the time a Gaussian blur (sigma 0.5-2 px) and
+/// sensor noise (sigma 2). Rendered at twice the size and reduced by area averaging.
+inline CorrespondencePair syntheticPair(const cv::Mat& image, const std::string& name, double max_tilt,
+                                        bool photometric, std::mt19937& rng)
+{
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double tilt = std::exp(std::log(max_tilt) * unit(rng)), phi = CV_PI * unit(rng);
+  const double scale = std::pow(1.3, 2.0 * unit(rng) - 1.0), psi = (20.0 * unit(rng) - 10.0) * CV_PI / 180.0;
+  const cv::Matx22d rot_phi(std::cos(phi), -std::sin(phi), std::sin(phi), std::cos(phi));
+  const cv::Matx22d rot_psi(std::cos(psi), -std::sin(psi), std::sin(psi), std::cos(psi));
+  const cv::Matx22d a = scale * rot_psi * rot_phi.t() * cv::Matx22d(1.0 / tilt, 0.0, 0.0, 1.0) * rot_phi;
+  const cv::Point2d c((image.cols - 1) / 2.0, (image.rows - 1) / 2.0);
+  // Perspective: w = 1 + p.(x - c), |p| up to 0.15 / half the diagonal, in a random direction.
+  const double theta = 2 * CV_PI * unit(rng), strength = 0.15 * unit(rng) / (0.5 * std::hypot(image.cols, image.rows));
+  const cv::Vec2d pv(strength * std::cos(theta), strength * std::sin(theta));
+  const cv::Matx33d centre(1, 0, -c.x, 0, 1, -c.y, 0, 0, 1), back(1, 0, c.x, 0, 1, c.y, 0, 0, 1);
+  const cv::Matx33d core(a(0, 0), a(0, 1), 0, a(1, 0), a(1, 1), 0, pv[0], pv[1], 1);
+  const cv::Matx33d h = back * core * centre;
+  const cv::Matx33d up(2, 0, 0.5, 0, 2, 0.5, 0, 0, 1);
+  cv::Mat big, warped;
+  cv::warpPerspective(image, big, cv::Mat(up * h), cv::Size(2 * image.cols, 2 * image.rows), cv::INTER_LINEAR,
+                      cv::BORDER_CONSTANT);
+  cv::resize(big, warped, image.size(), 0, 0, cv::INTER_AREA);
+  if (photometric)
+  {
+    const double gain = 0.6 + 0.8 * unit(rng), gamma = std::exp(std::log(0.7) + std::log(2.0) * unit(rng));
+    const double offset = 40.0 * unit(rng) - 20.0;
+    cv::Mat lut(1, 256, CV_8U);
+    for (int i = 0; i < 256; ++i)
+      lut.at<uchar>(i) = cv::saturate_cast<uchar>(255.0 * std::pow(gain * i / 255.0, gamma) + offset);
+    cv::LUT(warped, lut, warped);
+    if (unit(rng) < 0.5)
+    {
+      const double sigma = 0.5 + 1.5 * unit(rng);
+      cv::GaussianBlur(warped, warped, cv::Size(), sigma, sigma);
+    }
+    if (unit(rng) < 0.5)
+    {
+      cv::Mat noise(warped.size(), CV_16SC(warped.channels()));
+      cv::randn(noise, 0, 2.0);
+      cv::Mat w16;
+      warped.convertTo(w16, CV_16S);
+      w16 += noise;
+      w16.convertTo(warped, CV_8U);
+    }
+  }
+  CorrespondencePair p;
+  p.name = name;
+  p.a = image;
+  p.b = warped;
+  p.homography = cv::Mat(h).clone();
+  return p;
+}
+
+/// A graded viewpoint change of `image` for evaluation: the view of a camera turned by `degrees` about
+/// the image's vertical axis (planar scene, affine approximation: x compressed by cos(degrees)), about
+/// the centre, no other change. 0 degrees gives the identity.
+inline CorrespondencePair tiltPair(const cv::Mat& image, const std::string& name, double degrees)
+{
+  const double t = std::cos(degrees * CV_PI / 180.0);
+  const cv::Point2d c((image.cols - 1) / 2.0, (image.rows - 1) / 2.0);
+  const cv::Matx33d h(t, 0, c.x * (1 - t), 0, 1, 0, 0, 0, 1);
+  const cv::Matx33d up(2, 0, 0.5, 0, 2, 0.5, 0, 0, 1);
+  cv::Mat big, warped;
+  cv::warpPerspective(image, big, cv::Mat(up * h), cv::Size(2 * image.cols, 2 * image.rows), cv::INTER_LINEAR,
+                      cv::BORDER_CONSTANT);
+  cv::resize(big, warped, image.size(), 0, 0, cv::INTER_AREA);
+  CorrespondencePair p;
+  p.name = name;
+  p.a = image;
+  p.b = warped;
+  p.homography = cv::Mat(h).clone();
+  return p;
+}
+
+/// A homography pair given as two images and an OpenCV FileStorage or plain-text 3x3 matrix (A -> B),
+/// e.g. opencv-doc's graf1.png, graf3.png, H1to3p.xml. Throws std::runtime_error naming the file.
+inline CorrespondencePair loadHomographyPair(const std::string& a, const std::string& b, const std::string& h_path)
+{
+  CorrespondencePair p;
+  p.name = "pair/" + std::filesystem::path(a).stem().string() + "-" + std::filesystem::path(b).stem().string();
+  p.a = cv::imread(a, cv::IMREAD_COLOR);
+  p.b = cv::imread(b, cv::IMREAD_COLOR);
+  if (p.a.empty() || p.b.empty())
+    throw std::runtime_error(a + " or " + b + ": cannot read");
+  if (h_path.size() > 4 && h_path.substr(h_path.size() - 4) == ".xml")
+  {
+    cv::FileStorage fs(h_path, cv::FileStorage::READ);
+    if (!fs.isOpened() || fs.root().empty())
+      throw std::runtime_error(h_path + ": no matrix");
+    (*fs.root().begin()) >> p.homography;  // the first (only) entry, whatever its name (H13, ...)
+    if (p.homography.rows != 3 || p.homography.cols != 3)
+      throw std::runtime_error(h_path + ": not a 3x3 matrix");
+    p.homography.convertTo(p.homography, CV_64F);
+  }
+  else
+    p.homography = readHomography(h_path);
+  return p;
 }
 
 inline PairSampler::Pairs samplePairs(PairSampler& sampler, const CorrespondencePair& pair, const V1FeaturePyramid& a,

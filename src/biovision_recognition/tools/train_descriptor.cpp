@@ -3,6 +3,7 @@
 #include <array>
 #include <chrono>
 #include <ctime>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 #include <stdexcept>
@@ -32,6 +33,10 @@ struct Options
   int warps = 0;
   double max_tilt = 2.5;
   int warp_pairs = 500;
+  std::vector<std::string> images;  // collections: synthetic pairs of their dev sources
+  int per_source = 4, synthetic = 2, synthetic_pairs = 150;
+  double synthetic_tilt = 4.0;
+  bool photometric = true;
   LdaHashTrainer::Parameters training;
   int threads = 2;
   std::string command;  // the options as given, for the model's provenance
@@ -55,8 +60,23 @@ Options parseOptions(int argc, char** argv)
   app.add_option("--out", o.out, "model file to write")->required();
   app.add_option("--stereo", o.stereo, "folder of Middlebury scenes (ground-truth disparities give the pairs)");
   app.add_option("--sequence", o.sequence, "HPatches/Oxford sequence (homographies give the pairs)");
-  app.add_option("--part", o.part, "scenes alternate train/test in name order")
-      ->check(CLI::IsMember({"train", "test", "all"}));
+  app.add_option("--part", o.part,
+                 "stereo scenes: train/test alternate in name order (models up to session 4); dev/heldout: the split "
+                 "by source (descriptorSplit)")
+      ->check(CLI::IsMember({"train", "test", "all", "dev", "heldout"}));
+  app.add_option("--images", o.images,
+                 "image collections, comma-separated (a file = one source, a subfolder = one source): synthetic "
+                 "pairs of their dev sources (never opencv-doc)")
+      ->delimiter(',')
+      ->check(CLI::ExistingDirectory);
+  app.add_option("--per-source", o.per_source, "--images: at most this many images per source, evenly spaced")
+      ->check(biovision_common::kPositive);
+  app.add_option("--synthetic", o.synthetic, "--images: synthetic views per image")->check(biovision_common::kPositive);
+  app.add_option("--synthetic-pairs", o.synthetic_pairs, "--images: pairs of each kind per synthetic view")
+      ->check(biovision_common::kPositive);
+  app.add_option("--synthetic-tilt", o.synthetic_tilt, "--images: largest camera tilt (ASIFT: 4 = 75.5 degrees)")
+      ->check(CLI::Range(1.0, 8.0));
+  app.add_option("--photometric", o.photometric, "--images: gain, gamma, offset, blur and noise on the second view");
   app.add_option("--targets", o.targets, "sequence images paired with image 1")
       ->delimiter(',')
       ->check(biovision_common::kPositive);
@@ -89,8 +109,8 @@ Options parseOptions(int argc, char** argv)
   app.add_option("--threads", o.threads, "threads for Eigen's products")->check(biovision_common::kPositive);
   app.add_option("--json", o.json_path, "write the training statistics to this file");
   app.callback([&] {
-    if (o.stereo.empty() && o.sequence.empty())
-      throw CLI::RequiredError("--stereo or --sequence");
+    if (o.stereo.empty() && o.sequence.empty() && o.images.empty())
+      throw CLI::RequiredError("--stereo, --sequence or --images");
     o.layout.pooling_diameter = pooling[0];
     o.layout.pooling_step = pooling[1];
     auto& adaptation = o.layout.shape;
@@ -157,6 +177,32 @@ int main(int argc, char** argv)
     PairSampler::Parameters wp = o.sampling;
     wp.max_pairs = o.warp_pairs;
     PairSampler warp_sampler(wp);
+    const size_t warped_pairs = pairs.size();
+    std::vector<std::string> sources;
+    if (!o.images.empty())
+    {
+      const auto images = listSourceImages(o.images, o.per_source, "dev");
+      std::mt19937 rng(23);
+      for (const auto& image : images)
+      {
+        const cv::Mat bgr = cv::imread(image.path, cv::IMREAD_COLOR);
+        if (bgr.empty() || std::min(bgr.cols, bgr.rows) < 128)
+          continue;  // unreadable or too small for keypoints at 8 wavelengths
+        if (std::find(sources.begin(), sources.end(), image.source) == sources.end())
+          sources.push_back(image.source);
+        for (int k = 0; k < o.synthetic; ++k)
+          pairs.push_back(syntheticPair(bgr,
+                                        "synthetic/" + image.source + "/" +
+                                            std::filesystem::path(image.path).filename().string() + "/" +
+                                            std::to_string(k),
+                                        o.synthetic_tilt, o.photometric, rng));
+      }
+      std::cerr << "synthetic pairs: " << pairs.size() - warped_pairs << " from " << images.size() << " images of "
+                << sources.size() << " dev sources\n";
+    }
+    PairSampler::Parameters sp = o.sampling;
+    sp.max_pairs = o.synthetic_pairs;
+    PairSampler synthetic_sampler(sp);
 
     // One side of each pair and the pair differences: four matrices, not six, for large training sets.
     std::vector<cv::Mat> xa, dx, ya, dy;
@@ -165,12 +211,19 @@ int main(int argc, char** argv)
       const CorrespondencePair& pair = pairs[i];
       pa.build(biovision_v1::InputImage(pair.a).gray());
       pb.build(biovision_v1::InputImage(pair.b).gray());
-      const auto p = samplePairs(i < real_pairs ? sampler : warp_sampler, pair, pa, pb);
+      const auto p = samplePairs(i < real_pairs ? sampler : (i < warped_pairs ? warp_sampler : synthetic_sampler), pair,
+                                 pa, pb);
+      if (p.positive_a.empty() || p.negative_a.empty())
+      {
+        std::cerr << "[" << i + 1 << "/" << pairs.size() << "] " << pair.name << ": no pairs (skipped)\n";
+        continue;  // e.g. a flat synthetic image: no keypoint
+      }
       xa.push_back(features.extract(pa, p.positive_a));
       dx.push_back(xa.back() - features.extract(pb, p.positive_b));
       ya.push_back(features.extract(pa, p.negative_a));
       dy.push_back(ya.back() - features.extract(pb, p.negative_b));
-      std::cerr << pair.name << ": " << p.positive_a.size() << " pairs of each kind\n";
+      std::cerr << "[" << i + 1 << "/" << pairs.size() << "] " << pair.name << ": " << p.positive_a.size()
+                << " pairs of each kind\n";
     }
     const int n = layout.featureCount();
     const Matrix positive_a = stack(xa, n), positive_difference = stack(dx, n);
@@ -199,6 +252,8 @@ int main(int argc, char** argv)
       statistics["positive_pairs"] = positive_a.rows();
       statistics["negative_pairs"] = negative_a.rows();
       statistics["seconds"] = seconds;
+      statistics["image_pairs"] = pairs.size();
+      statistics["synthetic_sources"] = sources;
       biovision_common::writeJsonFile(o.json_path, statistics);
     }
   }

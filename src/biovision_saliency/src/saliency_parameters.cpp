@@ -22,6 +22,12 @@ void SaliencyParameters::validate() const
     fail("weights must be >= 0 and not all 0");
   if (!(final_blur >= 0 && final_blur <= 200))
     fail("final_blur outside [0, 200]");
+  if (prior != PriorMode::none && prior != PriorMode::centre && prior != PriorMode::horizon)
+    fail("prior must be none (0), centre (1) or horizon (2)");
+  if (!(prior_weight >= 0 && prior_weight <= 1))
+    fail("prior_weight outside [0, 1]");
+  if (!(prior_sigma >= 0.02 && prior_sigma <= 10))
+    fail("prior_sigma outside [0.02, 10]");
   if (!(near_fraction >= 0 && near_fraction < 1))
     fail("near_fraction outside [0, 1)");
   if (!(preferred_width > 0))

@@ -156,6 +156,31 @@ cv::Mat SaliencyPipeline::motionChannel(const cv::Mat& gray, const cv::Point2f& 
   return channel;
 }
 
+cv::Mat SaliencyPipeline::priorMap(cv::Size working, double scale, const HeadDirection& head) const
+{
+  const auto& p = parameters_;
+  if (p.prior == PriorMode::none)
+    return cv::Mat(working, CV_32F, cv::Scalar(1));
+  // Separable: a column profile (vertical) times a row profile (horizontal, 1 for the horizon band), so
+  // a frame costs width + height exponentials. Working-pixel centres in full-resolution px: (x + 0.5) scale.
+  const double sx = p.prior_sigma * working.width * scale, sy = p.prior_sigma * working.height * scale;
+  const double centre_row = p.prior == PriorMode::centre ? head.principal.y
+                                                         : head.principal.y - head.focal * std::tan(head.tilt);
+  cv::Mat column(working.height, 1, CV_32F), row(1, working.width, CV_32F, cv::Scalar(1));
+  for (int y = 0; y < working.height; ++y)
+  {
+    const double d = ((y + 0.5) * scale - centre_row) / sy;
+    column.at<float>(y) = static_cast<float>(std::exp(-0.5 * d * d));
+  }
+  if (p.prior == PriorMode::centre)
+    for (int x = 0; x < working.width; ++x)
+    {
+      const double d = ((x + 0.5) * scale - head.principal.x) / sx;
+      row.at<float>(x) = static_cast<float>(std::exp(-0.5 * d * d));
+    }
+  return column * row;
+}
+
 std::vector<SalientRegion> SaliencyPipeline::extractRegions(const cv::Mat& map, double scale, cv::Size full,
                                                             const HeadDirection& head, double t)
 {
@@ -283,6 +308,11 @@ SaliencyResult SaliencyPipeline::process(const cv::Mat& input, const cv::Mat& di
   {
     const double sigma = parameters_.final_blur * working.width / parameters_.reference_width;
     cv::GaussianBlur(fused, fused, cv::Size(), sigma, sigma, cv::BORDER_REPLICATE);
+  }
+  if (parameters_.prior != PriorMode::none && parameters_.prior_weight > 0)
+  {
+    const cv::Mat prior = priorMap(working, result.scale, head);
+    fused = fused.mul((1.0 - parameters_.prior_weight) + parameters_.prior_weight * prior);
   }
   // Final map on [0, 1] relative to its own maximum, so the threshold is "2/3 of the maximum" -- but
   // never stretched from below min_saliency, so that a featureless frame yields no region.

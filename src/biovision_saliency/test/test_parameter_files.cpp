@@ -25,6 +25,9 @@ TEST(ParameterFiles, CfgDefaultsEqualTheCoreDefaults)
   EXPECT_EQ(cfg.use_dis_flow, core.use_dis_flow);
   EXPECT_EQ(cfg.compensate_ego_motion, core.compensate_ego_motion);
   EXPECT_EQ(cfg.max_regions, core.max_regions);
+  EXPECT_EQ(cfg.prior, core.prior);
+  EXPECT_NEAR(cfg.prior_weight, core.prior_weight, 1e-4);
+  EXPECT_NEAR(cfg.prior_sigma, core.prior_sigma, 1e-4 * std::max(1.0, core.prior_sigma));
   // A .cfg default is a decimal literal: 0.6667 stands for the core's 2/3.
   EXPECT_NEAR(cfg.colour_weight, core.colour_weight, 1e-4 * std::max(1.0, std::abs(core.colour_weight)));
   EXPECT_NEAR(cfg.disparity_weight, core.disparity_weight, 1e-4 * std::max(1.0, std::abs(core.disparity_weight)));

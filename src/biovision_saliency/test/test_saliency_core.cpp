@@ -1,5 +1,6 @@
 // Unit tests of the ROS-free saliency core on synthetic scenes with known answers.
 #include <cmath>
+#include <tuple>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
@@ -55,6 +56,58 @@ TEST(SaliencyPipeline, RedDiscOnGreyIsTheTopRegion)
   // Box grown by the margin around the disc, in full-resolution pixels.
   EXPECT_LE(r.regions[0].box.x, 450 - 30 - 10);
   EXPECT_GE(r.regions[0].box.br().x, 450 + 30 + 10);
+}
+
+TEST(SaliencyPrior, CentreAndHorizonPeakWhereTheySay)
+{
+  SaliencyParameters p;
+  HeadDirection h;
+  h.focal = 500.0;
+  h.principal = cv::Point2d(319.5, 239.5);
+  const cv::Size working(160, 120);  // scale 4
+  auto peakOf = [&](PriorMode mode, double tilt) {
+    p.prior = mode;
+    h.tilt = tilt;
+    const cv::Mat prior = SaliencyPipeline(p).priorMap(working, 4.0, h);
+    cv::Point at;
+    double lo = 0, hi = 0;
+    cv::minMaxLoc(prior, &lo, &hi, nullptr, &at);
+    return std::make_tuple(at, lo, hi, prior);
+  };
+  const auto [none_at, none_lo, none_hi, none_map] = peakOf(PriorMode::none, 0.0);
+  EXPECT_EQ(none_lo, 1.0);
+  EXPECT_EQ(none_hi, 1.0);
+  const auto [centre_at, centre_lo, centre_hi, centre_map] = peakOf(PriorMode::centre, 0.3);
+  EXPECT_NEAR(centre_at.x, 79.5, 1.0);  // the tilt does not move the centre prior
+  EXPECT_NEAR(centre_at.y, 59.5, 1.0);
+  EXPECT_LT(centre_lo, 0.5);
+  // Horizon: tilting down by 0.2 rad raises the horizon by f tan(0.2) = 101 px (25 working px).
+  const auto [level_at, level_lo, level_hi, level_map] = peakOf(PriorMode::horizon, 0.0);
+  const auto [down_at, down_lo, down_hi, down_map] = peakOf(PriorMode::horizon, 0.2);
+  EXPECT_NEAR(level_at.y, 59.5, 1.0);
+  EXPECT_NEAR(down_at.y, (239.5 - 500.0 * std::tan(0.2)) / 4.0 - 0.5, 1.0);
+  // A band: constant along a row.
+  EXPECT_FLOAT_EQ(level_map.at<float>(30, 0), level_map.at<float>(30, 159));
+}
+
+TEST(SaliencyPrior, HorizonPriorPrefersTheDiscAtEyeLevel)
+{
+  // Two identical red discs, one on the horizon row, one near the top: only the prior tells them apart.
+  cv::Mat img = greyScene();
+  cv::circle(img, {200, 240}, 30, cv::Scalar(0, 0, 220), cv::FILLED);
+  cv::circle(img, {440, 60}, 30, cv::Scalar(0, 0, 220), cv::FILLED);
+  SaliencyParameters p;
+  p.prior = PriorMode::horizon;
+  p.prior_weight = 0.5;
+  SaliencyPipeline with(p);
+  const SaliencyResult r = with.process(img, cv::Mat(), head(), 0.0);
+  ASSERT_FALSE(r.regions.empty());
+  EXPECT_TRUE(contains(r.regions[0].box, {200, 240})) << r.regions[0].box;
+  p.prior = PriorMode::none;
+  SaliencyPipeline without(p);
+  const SaliencyResult n = without.process(img, cv::Mat(), head(), 0.0);
+  ASSERT_GE(n.regions.size(), 2u);
+  EXPECT_NEAR(n.regions[0].peak, n.regions[1].peak, 0.05);  // without the prior: a tie
 }
 
 TEST(SaliencyPipeline, BlankAndSaturatedImagesGiveNoRegion)

@@ -52,6 +52,10 @@ public:
   cv::Mat colourChannel(const cv::Mat& bgr_working) const;
   cv::Mat disparityChannel(const cv::Mat& disparity_working, double max_disparity_working) const;
   cv::Mat motionChannel(const cv::Mat& gray_working, const cv::Point2f& predicted_flow, cv::Point2f* global_flow);
+  /// The spatial prior of `parameters().prior` at working size `working`, CV_32F in (0, 1] (all ones for
+  /// PriorMode::none). scale: full-resolution px per working px; head: focal > 0 and principal point at
+  /// full resolution (the horizon row is v = cy - f tan(tilt)).
+  cv::Mat priorMap(cv::Size working, double scale, const HeadDirection& head) const;
 
 private:
   std::vector<SalientRegion> extractRegions(const cv::Mat& map, double scale, cv::Size full, const HeadDirection& head,

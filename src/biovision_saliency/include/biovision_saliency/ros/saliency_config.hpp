@@ -16,6 +16,9 @@ inline SaliencyParameters toSaliencyParameters(const SaliencyConfig& c)
   p.disparity_weight = c.disparity_weight;
   p.motion_weight = c.motion_weight;
   p.final_blur = c.final_blur;
+  p.prior = static_cast<PriorMode>(c.prior);
+  p.prior_weight = c.prior_weight;
+  p.prior_sigma = c.prior_sigma;
   p.preferred_disparity_mode = c.preferred_disparity_mode;
   p.near_fraction = c.near_fraction;
   p.preferred_disparity = c.preferred_disparity;

@@ -365,6 +365,8 @@ private:
     out["end_to_end_latency_p50_ms"] = percentile(end_to_end, 0.5);
     out["end_to_end_latency_p95_ms"] = percentile(end_to_end, 0.95);
     out["frames_complete"] = end_to_end.size();
+    // Frames with every output (the others were dropped by a stage's queue and covered by a later frame).
+    out["complete_frames_per_s"] = (wall > 0 ? end_to_end.size() / wall : 0.0);
     // CPU per nodelet (ScopedProcessingTimer: its callback thread's CPU), over the whole phase.
     std::map<std::string, std::pair<unsigned long, double>> cpu;  // nodelet -> inputs, CPU [s]
     double attributed = 0.0;

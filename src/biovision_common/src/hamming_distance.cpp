@@ -55,6 +55,37 @@ __attribute__((target("avx2"))) inline __m256i popcountLanes256(__m256i v)
   return _mm256_sad_epu8(_mm256_add_epi8(lo, hi), _mm256_setzero_si256());
 }
 
+// Per-byte popcount of a 256-bit vector (nibble look-up, vpshufb), values 0..8.
+__attribute__((target("avx2"))) inline __m256i popcountBytes256(__m256i v)
+{
+  const __m256i lut = _mm256_setr_epi8(0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4, 0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2,
+                                       3, 2, 3, 3, 4);
+  const __m256i low = _mm256_set1_epi8(0x0f);
+  return _mm256_add_epi8(_mm256_shuffle_epi8(lut, _mm256_and_si256(v, low)),
+                         _mm256_shuffle_epi8(lut, _mm256_and_si256(_mm256_srli_epi16(v, 4), low)));
+}
+
+// 16 distances of 128-bit codes with no scalar step: SAD gives each code's two 64-bit halves, two rounds of
+// packus + madd add the halves and narrow to 16 bits, one unpack restores the order. (The 4-code loop below
+// stored the lanes and copied them one by one: only 1.1x the POPCNT path, issue 21.)
+__attribute__((target("avx2"))) inline void sixteen128(const uint64_t* c, __m256i qv, uint16_t* out)
+{
+  const __m256i zero = _mm256_setzero_si256(), ones = _mm256_set1_epi16(1);
+  const __m256i* p = reinterpret_cast<const __m256i*>(c);
+  __m256i s[8];
+  for (int k = 0; k < 8; ++k)  // s[k] = [c(2k).w0, c(2k).w1 | c(2k+1).w0, c(2k+1).w1] as 64-bit lanes
+    s[k] = _mm256_sad_epu8(popcountBytes256(_mm256_xor_si256(_mm256_loadu_si256(p + k), qv)), zero);
+  // 16-bit halves, lane 0 = [c0 c2 c4 c6] and lane 1 = [c1 c3 c5 c7], two halves each; madd adds them.
+  const __m256i a = _mm256_madd_epi16(
+      _mm256_packus_epi32(_mm256_packus_epi32(s[0], s[1]), _mm256_packus_epi32(s[2], s[3])), ones);
+  const __m256i b = _mm256_madd_epi16(
+      _mm256_packus_epi32(_mm256_packus_epi32(s[4], s[5]), _mm256_packus_epi32(s[6], s[7])), ones);
+  const __m256i d = _mm256_packus_epi32(a, b);  // lane 0 = even codes 0..14, lane 1 = odd codes 1..15
+  const __m128i even = _mm256_castsi256_si128(d), odd = _mm256_extracti128_si256(d, 1);
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(out), _mm_unpacklo_epi16(even, odd));
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(out + 8), _mm_unpackhi_epi16(even, odd));
+}
+
 __attribute__((target("avx2,popcnt"))) void avx2Distances(const uint64_t* q, const uint64_t* c, size_t count, int words,
                                                           uint16_t* out)
 {
@@ -75,6 +106,8 @@ __attribute__((target("avx2,popcnt"))) void avx2Distances(const uint64_t* q, con
   {
     const __m256i qv = _mm256_setr_epi64x(static_cast<long long>(q[0]), static_cast<long long>(q[1]),
                                           static_cast<long long>(q[0]), static_cast<long long>(q[1]));
+    for (; i + 16 <= count; i += 16)
+      sixteen128(c + 2 * i, qv, out + i);
     alignas(32) uint64_t lanes[4];
     for (; i + 4 <= count; i += 4)
     {

@@ -58,7 +58,7 @@ TEST(HammingDistance, EveryAvailablePathEqualsTheScalarReference)
   const auto paths = availableHammingPaths();
   ASSERT_EQ(paths.front(), HammingPath::Scalar);
   for (int bits : {64, 128, 256, 512})
-    for (size_t count : {size_t(1), size_t(7), size_t(8), size_t(33), size_t(1001)})
+    for (size_t count : {size_t(1), size_t(7), size_t(8), size_t(16), size_t(33), size_t(47), size_t(1001)})
     {
       const int words = bits / 64;
       const std::vector<uint64_t> q = randomWords(words, rng), lib = randomWords(words * count, rng);

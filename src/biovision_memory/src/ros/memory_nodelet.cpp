@@ -16,6 +16,7 @@
 
 #include "biovision_common/object_label.hpp"
 #include "biovision_ros_common/image_message_converter.hpp"
+#include "biovision_ros_common/processing_times.hpp"
 
 namespace biovision_memory
 {
@@ -222,6 +223,7 @@ void MemoryNodelet::onCameraInfo(const sensor_msgs::CameraInfoConstPtr& msg)
 
 void MemoryNodelet::onDisparity(const stereo_msgs::DisparityImageConstPtr& msg)
 {
+  const biovision_ros_common::ScopedProcessingTimer timer(getName());  // loop_bench's CPU per stage
   // The clock, not the stamps: a disparity map arrives a stereo latency after the timer's `now`, and the
   // objects later still, so stamps alone look like backward jumps (the mission demo reset the STM on
   // every map with BioBin's ~0.3 s latency).

@@ -15,6 +15,7 @@
 #include "biovision_common/atomic_file.hpp"
 #include "biovision_common/stored_file.hpp"
 #include "biovision_ros_common/image_message_converter.hpp"
+#include "biovision_ros_common/processing_times.hpp"
 #include "biovision_v1/input_image.hpp"
 
 using biovision_common::StoredFileError;
@@ -166,6 +167,7 @@ bool RecognitionNodelet::position(const cv::Rect& box, const cv::Size& image_siz
 
 void RecognitionNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
 {
+  const biovision_ros_common::ScopedProcessingTimer timer(getName());  // loop_bench's CPU per stage
   cv::Mat bgr, gray;
   try
   {

@@ -14,6 +14,7 @@
 
 #include "biovision_ros_common/image_message_converter.hpp"
 #include "biovision_ros_common/input_check.hpp"
+#include "biovision_ros_common/processing_times.hpp"
 #include "biovision_saliency/ros/saliency_config.hpp"
 
 namespace biovision_saliency
@@ -152,6 +153,7 @@ bool SaliencyNodelet::resetInhibition(std_srvs::Trigger::Request&, std_srvs::Tri
 
 void SaliencyNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
 {
+  const biovision_ros_common::ScopedProcessingTimer timer(getName());  // loop_bench's CPU per stage
   const auto start = std::chrono::steady_clock::now();
   std::lock_guard<std::mutex> lock(state_mutex_);
   SaliencyResult result;

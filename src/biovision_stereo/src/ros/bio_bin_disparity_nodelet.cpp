@@ -14,6 +14,7 @@
 
 #include "biovision_ros_common/image_message_converter.hpp"
 #include "biovision_ros_common/input_check.hpp"
+#include "biovision_ros_common/processing_times.hpp"
 #include "biovision_stereo/ros/bio_bin_config.hpp"
 #include "biovision_v1/wavelength_list.hpp"
 
@@ -150,6 +151,7 @@ void BioBinDisparityNodelet::pairCallback(const sensor_msgs::ImageConstPtr& left
                                           const sensor_msgs::ImageConstPtr& right,
                                           const sensor_msgs::CameraInfoConstPtr& right_info)
 {
+  const biovision_ros_common::ScopedProcessingTimer timer(getName());  // loop_bench's CPU per stage
   ++pairs_;
   std::lock_guard<std::mutex> lock(matcher_mutex_);
   image_geometry::StereoCameraModel model;

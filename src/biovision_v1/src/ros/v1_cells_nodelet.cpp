@@ -10,6 +10,7 @@
 #include <sensor_msgs/image_encodings.h>
 
 #include "biovision_ros_common/image_message_converter.hpp"
+#include "biovision_ros_common/processing_times.hpp"
 #include "biovision_v1/ros/v1_cells_config.hpp"
 #include "biovision_v1/input_image.hpp"
 #include "biovision_v1/wavelength_list.hpp"
@@ -85,6 +86,7 @@ void V1CellsNodelet::reconfigure(V1CellsConfig& config, uint32_t /*level*/)
 
 void V1CellsNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
 {
+  const biovision_ros_common::ScopedProcessingTimer timer(getName());  // loop_bench's CPU per stage
   const auto start = std::chrono::steady_clock::now();
   V1Result result;
   cv::Mat input;

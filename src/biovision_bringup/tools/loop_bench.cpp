@@ -1,0 +1,610 @@
+// loop_bench: the whole perception loop on a committed bag, in this process as its one nodelet manager,
+// as fast as the graph keeps up, against a peer pipeline from Debian parts on the same frames (issue 21).
+// Run by launch/loop_bench.launch, which loads the nodelets into this process (/loop_bench).
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include <sys/resource.h>
+
+#include <biovision_msgs/KeypointArray.h>
+#include <biovision_msgs/RecognizedObjectArray.h>
+#include <biovision_msgs/SalientRegionArray.h>
+#include <nodelet/loader.h>
+#include <opencv2/core.hpp>
+#include <ros/ros.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+#include <rosgraph_msgs/Clock.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/JointState.h>
+#include <stereo_msgs/DisparityImage.h>
+#include <tf2_msgs/TFMessage.h>
+#include <topic_tools/shape_shifter.h>
+
+#include "biovision_common/cpu_features.hpp"
+#include "biovision_common/tool_options.hpp"
+#include "biovision_ros_common/processing_times.hpp"
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+const char* kDescription =
+    "Replays a bag's stereo frames through the perception nodelets loaded into this process (one nodelet\n"
+    "manager: launch/loop_bench.launch loads them) as fast as the graph keeps up — a frame is published once\n"
+    "fewer than --in-flight frames are unfinished — without the simulator, and measures end-to-end frames/s,\n"
+    "per-stage latency (p50/p95) and CPU per stage. Phases on the same frames: 'frontend' (Debian's debayer +\n"
+    "rectify only), 'ours' (BioBin, saliency, recognition, V1 keypoints, memory) and 'peer' (stereo_image_proc\n"
+    "SGBM + OpenCV spectral-residual saliency + ORB/BFMatcher in the salient regions).";
+
+double seconds(Clock::duration d)
+{
+  return std::chrono::duration<double>(d).count();
+}
+
+double processCpuSeconds()
+{
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_utime.tv_sec + u.ru_stime.tv_sec + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+double percentile(std::vector<double> v, double p)
+{
+  if (v.empty())
+    return -1.0;
+  std::sort(v.begin(), v.end());
+  const double pos = p * (v.size() - 1);
+  const size_t i = static_cast<size_t>(pos);
+  const double f = pos - i;
+  return i + 1 < v.size() ? v[i] * (1 - f) + v[i + 1] * f : v[i];
+}
+
+/// One stereo frame of the bag, restamped for its replay loop.
+struct Frame
+{
+  ros::Time stamp;
+  sensor_msgs::ImageConstPtr left, right;
+  sensor_msgs::CameraInfoConstPtr left_info, right_info;
+  std::vector<tf2_msgs::TFMessageConstPtr> tf;  ///< recorded since the previous frame
+  std::vector<sensor_msgs::JointStateConstPtr> joints;
+};
+
+template <typename M>
+boost::shared_ptr<std::remove_const_t<M>> restamped(const boost::shared_ptr<M>& m, ros::Duration offset)
+{
+  auto c = boost::make_shared<std::remove_const_t<M>>(*m);
+  c->header.stamp += offset;
+  return c;
+}
+
+/// An output watched by the benchmark: its arrival time per frame stamp.
+struct Sink
+{
+  std::string topic;
+  std::string stage;      ///< the name in the report
+  std::string after;      ///< the sink whose arrival starts this stage ("" = the frame's publication)
+  bool completes = true;  ///< a frame is finished when every completing sink has given it (or a later one)
+  std::string nodelet;    ///< the nodelet (getName()) whose ScopedProcessingTimer gives this stage's CPU
+};
+
+struct Phase
+{
+  std::string name;
+  std::vector<Sink> sinks;
+  std::vector<std::string> activate;  ///< outputs subscribed only to switch their producer on (lazy nodelets)
+};
+
+class LoopBench
+{
+public:
+  LoopBench(ros::NodeHandle& nh, std::vector<Frame> frames, int in_flight, int warmup, double timeout)
+    : nh_(nh), frames_(std::move(frames)), in_flight_(in_flight), warmup_(warmup), timeout_(timeout)
+  {
+    clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 1);
+    tf_pub_ = nh_.advertise<tf2_msgs::TFMessage>("/tf", 100);
+    joints_pub_ = nh_.advertise<sensor_msgs::JointState>("/joint_states", 100);
+    left_pub_ = nh_.advertise<sensor_msgs::Image>("stereo/left/image_raw", 5);
+    right_pub_ = nh_.advertise<sensor_msgs::Image>("stereo/right/image_raw", 5);
+    left_info_pub_ = nh_.advertise<sensor_msgs::CameraInfo>("stereo/left/camera_info", 5);
+    right_info_pub_ = nh_.advertise<sensor_msgs::CameraInfo>("stereo/right/camera_info", 5);
+  }
+
+  void publishStatic(const std::vector<tf2_msgs::TFMessageConstPtr>& statics)
+  {
+    tf_static_pub_ = nh_.advertise<tf2_msgs::TFMessage>("/tf_static", 10, true);
+    auto all = boost::make_shared<tf2_msgs::TFMessage>();
+    for (const auto& m : statics)
+      all->transforms.insert(all->transforms.end(), m->transforms.begin(), m->transforms.end());
+    tf_static_pub_.publish(all);
+    publishClock(frames_.front().stamp - ros::Duration(0.5));
+  }
+
+  nlohmann::ordered_json run(const Phase& phase)
+  {
+    std::cout << "loop_bench: phase " << phase.name << ": waiting for its nodelets" << std::endl;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      arrivals_.clear();
+      sinks_ = phase.sinks;
+      for (const Sink& s : sinks_)
+        arrivals_[s.topic];
+    }
+    waitForPublishers(phase);
+    std::vector<ros::Subscriber> subs;
+    for (const Sink& s : phase.sinks)
+      subs.push_back(subscribe(s.topic));
+    for (const std::string& t : phase.activate)
+      subs.push_back(subscribe(t));
+    // The lazy chain subscribes upstream as listeners connect: wait until the raw images are watched.
+    const auto t_wait = Clock::now();
+    while (ros::ok() && (left_pub_.getNumSubscribers() == 0 || right_pub_.getNumSubscribers() == 0) &&
+           seconds(Clock::now() - t_wait) < 30)
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    std::this_thread::sleep_for(std::chrono::seconds(2));  // the remaining links of the chain
+
+    const auto stages_before = biovision_ros_common::ProcessingTimes::instance().snapshot();
+    published_.assign(frames_.size(), Clock::time_point());
+    double cpu_start = 0.0, cpu_end = 0.0;
+    Clock::time_point t_start, t_end;
+    size_t timeouts = 0;
+    for (size_t k = 0; k < frames_.size() && ros::ok(); ++k)
+    {
+      // Keep at most in_flight_ frames unfinished.
+      const auto t_block = Clock::now();
+      while (ros::ok() && unfinished(k) >= static_cast<size_t>(in_flight_))
+      {
+        if (seconds(Clock::now() - t_block) > timeout_)
+        {
+          ++timeouts;
+          break;
+        }
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+      }
+      if (static_cast<int>(k) == warmup_)
+      {
+        cpu_start = processCpuSeconds();
+        t_start = Clock::now();
+      }
+      publish(k);
+    }
+    waitAllFinished();
+    t_end = lastCompletion();
+    cpu_end = processCpuSeconds();
+    const auto stages_after = biovision_ros_common::ProcessingTimes::instance().snapshot();
+    subs.clear();
+    std::this_thread::sleep_for(std::chrono::seconds(1));
+    return report(phase, t_start, t_end, cpu_end - cpu_start, stages_before, stages_after, timeouts);
+  }
+
+private:
+  ros::Subscriber subscribe(const std::string& topic)
+  {
+    // Typed subscriptions: intra-process messages arrive as the publisher's pointer, never serialised.
+    if (topic.find("disparity") != std::string::npos)
+      return nh_.subscribe<stereo_msgs::DisparityImage>(
+          topic, 10, [this, topic](const stereo_msgs::DisparityImageConstPtr& m) { arrived(topic, m->header.stamp); });
+    if (topic.find("regions") != std::string::npos)
+      return nh_.subscribe<biovision_msgs::SalientRegionArray>(
+          topic, 10,
+          [this, topic](const biovision_msgs::SalientRegionArrayConstPtr& m) { arrived(topic, m->header.stamp); });
+    if (topic.find("objects") != std::string::npos)
+      return nh_.subscribe<biovision_msgs::RecognizedObjectArray>(
+          topic, 10,
+          [this, topic](const biovision_msgs::RecognizedObjectArrayConstPtr& m) { arrived(topic, m->header.stamp); });
+    if (topic.find("keypoints") != std::string::npos)
+      return nh_.subscribe<biovision_msgs::KeypointArray>(
+          topic, 10,
+          [this, topic](const biovision_msgs::KeypointArrayConstPtr& m) { arrived(topic, m->header.stamp); });
+    if (topic.find("image") != std::string::npos)
+      return nh_.subscribe<sensor_msgs::Image>(topic, 10, [this, topic](const sensor_msgs::ImageConstPtr& m) {
+        arrived(topic, m->header.stamp);
+      });
+    // Anything else (memory/stm ...): only switched on.
+    const boost::function<void(const topic_tools::ShapeShifter::ConstPtr&)> ignore =
+        [](const topic_tools::ShapeShifter::ConstPtr&) {};
+    return nh_.subscribe<topic_tools::ShapeShifter>(topic, 1, ignore);
+  }
+
+  void waitForPublishers(const Phase& phase)
+  {
+    const auto t0 = Clock::now();
+    while (ros::ok())
+    {
+      ros::master::V_TopicInfo topics;
+      ros::master::getTopics(topics);
+      size_t found = 0;
+      for (const Sink& s : phase.sinks)
+        for (const auto& t : topics)
+          if (t.name == nh_.resolveName(s.topic))
+          {
+            ++found;
+            break;
+          }
+      if (found == phase.sinks.size())
+        return;
+      if (seconds(Clock::now() - t0) > 60)
+        throw std::runtime_error("phase " + phase.name + ": only " + std::to_string(found) + " of " +
+                                 std::to_string(phase.sinks.size()) + " outputs advertised after 60 s");
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    }
+  }
+
+  void publishClock(ros::Time t)
+  {
+    rosgraph_msgs::Clock c;
+    c.clock = t;
+    clock_pub_.publish(c);
+  }
+
+  void publish(size_t k)
+  {
+    const Frame& f = frames_[k];
+    publishClock(f.stamp);
+    for (const auto& m : f.tf)
+      tf_pub_.publish(m);
+    for (const auto& m : f.joints)
+      joints_pub_.publish(m);
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      published_[k] = Clock::now();
+      index_[f.stamp] = k;
+    }
+    left_info_pub_.publish(f.left_info);
+    right_info_pub_.publish(f.right_info);
+    left_pub_.publish(f.left);
+    right_pub_.publish(f.right);
+  }
+
+  void arrived(const std::string& topic, ros::Time stamp)
+  {
+    const auto now = Clock::now();
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto& a = arrivals_[topic];
+    a[stamp] = now;
+  }
+
+  /// Whether `topic` has given frame k, or a later one (it dropped k).
+  bool covered(const std::map<ros::Time, Clock::time_point>& a, ros::Time stamp) const
+  {
+    return a.lower_bound(stamp) != a.end();
+  }
+
+  size_t unfinished(size_t next) const
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    size_t n = 0;
+    for (size_t k = 0; k < next; ++k)
+      for (const Sink& s : sinks_)
+        if (s.completes && !covered(arrivals_.at(s.topic), frames_[k].stamp))
+        {
+          ++n;
+          break;
+        }
+    return n;
+  }
+
+  void waitAllFinished()
+  {
+    const auto t0 = Clock::now();
+    while (ros::ok() && unfinished(frames_.size()) > 0 && seconds(Clock::now() - t0) < timeout_)
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+
+  Clock::time_point lastCompletion() const
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    Clock::time_point last = published_.back();
+    for (const Sink& s : sinks_)
+      if (s.completes)
+        for (const auto& [stamp, t] : arrivals_.at(s.topic))
+          last = std::max(last, t);
+    return last;
+  }
+
+  nlohmann::ordered_json report(const Phase& phase, Clock::time_point t_start, Clock::time_point t_end,
+                                double cpu_seconds,
+                                const std::map<std::string, biovision_ros_common::ProcessingTimes::Totals>& before,
+                                const std::map<std::string, biovision_ros_common::ProcessingTimes::Totals>& after,
+                                size_t timeouts)
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const size_t measured = frames_.size() - std::min<size_t>(frames_.size(), warmup_);
+    const double wall = seconds(t_end - t_start);
+    nlohmann::ordered_json out;
+    out["frames"] = measured;
+    out["warmup_frames"] = warmup_;
+    out["frames_per_s"] = measured / wall;
+    out["process_cpu_cores"] = cpu_seconds / wall;
+    out["process_cpu_ms_per_frame"] = 1e3 * cpu_seconds / measured;
+    out["timeouts"] = timeouts;
+    // Arrival of each sink per measured frame, relative to the frame's publication [ms].
+    std::map<std::string, std::vector<double>> stage_ms;
+    std::map<std::string, size_t> given;
+    std::vector<double> end_to_end;
+    for (size_t k = warmup_; k < frames_.size(); ++k)
+    {
+      const ros::Time stamp = frames_[k].stamp;
+      double last = 0.0;
+      bool complete = true;
+      std::map<std::string, double> at;
+      for (const Sink& s : phase.sinks)
+      {
+        const auto& a = arrivals_.at(s.topic);
+        const auto it = a.find(stamp);
+        if (it == a.end())
+        {
+          if (s.completes)
+            complete = false;
+          continue;
+        }
+        ++given[s.topic];
+        at[s.topic] = 1e3 * seconds(it->second - published_[k]);
+        if (s.completes)
+          last = std::max(last, at[s.topic]);
+      }
+      for (const Sink& s : phase.sinks)
+      {
+        if (!at.count(s.topic))
+          continue;
+        const double start = s.after.empty() ? 0.0 : (at.count(s.after) ? at[s.after] : -1.0);
+        if (start >= 0.0)
+          stage_ms[s.stage].push_back(at[s.topic] - start);
+      }
+      if (complete)
+        end_to_end.push_back(last);
+    }
+    out["end_to_end_latency_p50_ms"] = percentile(end_to_end, 0.5);
+    out["end_to_end_latency_p95_ms"] = percentile(end_to_end, 0.95);
+    out["frames_complete"] = end_to_end.size();
+    // Frames with every output (the others were dropped by a stage's queue and covered by a later frame).
+    out["complete_frames_per_s"] = (wall > 0 ? end_to_end.size() / wall : 0.0);
+    // CPU per nodelet (ScopedProcessingTimer: its callback thread's CPU), over the whole phase.
+    std::map<std::string, std::pair<unsigned long, double>> cpu;  // nodelet -> inputs, CPU [s]
+    double attributed = 0.0;
+    for (const auto& [name, t] : after)
+    {
+      const auto b = before.count(name) ? before.at(name) : biovision_ros_common::ProcessingTimes::Totals();
+      if (t.inputs == b.inputs)
+        continue;
+      cpu[name] = {t.inputs - b.inputs, t.cpu_seconds - b.cpu_seconds};
+      attributed += t.cpu_seconds - b.cpu_seconds;
+    }
+    // One row per stage: bench_report.py makes the rows of equal columns one table.
+    auto row = [&](const std::string& stage, const std::vector<double>& ms, size_t frames_given,
+                   const std::string& nodelet) {
+      nlohmann::ordered_json r;
+      r["latency_p50_ms"] = percentile(ms, 0.5);
+      r["latency_p95_ms"] = percentile(ms, 0.95);
+      r["frames_given"] = frames_given;
+      if (cpu.count(nodelet))
+      {
+        r["cpu_ms_per_input"] = 1e3 * cpu[nodelet].second / cpu[nodelet].first;
+        r["cpu_share"] = cpu[nodelet].second / (cpu_total_ + 1e-12);
+        cpu.erase(nodelet);
+      }
+      else
+      {
+        r["cpu_ms_per_input"] = "-";
+        r["cpu_share"] = "-";
+      }
+      stage_rows_[phase.name + ": " + stage] = r;
+    };
+    cpu_total_ = 0.0;
+    for (const auto& [name, c] : cpu)
+      cpu_total_ += c.second;
+    cpu_total_ = std::max(cpu_total_, cpu_seconds * frames_.size() / std::max<size_t>(1, measured));
+    for (const Sink& s : phase.sinks)
+      row(s.stage, stage_ms[s.stage], given[s.topic], s.nodelet);
+    const auto leftover = cpu;
+    for (const auto& [name, c] : leftover)  // nodelets without a watched output (memory)
+      row(name, {}, 0, name);
+    out["attributed_cpu_ms_per_frame"] = 1e3 * attributed / frames_.size();
+    out["unattributed_cpu_ms_per_frame"] = out["process_cpu_ms_per_frame"].get<double>() -
+                                           out["attributed_cpu_ms_per_frame"].get<double>();
+    row("end to end", end_to_end, end_to_end.size(), "");
+    return out;
+  }
+
+  ros::NodeHandle& nh_;
+  std::vector<Frame> frames_;
+  int in_flight_, warmup_;
+  double timeout_;
+  ros::Publisher clock_pub_, tf_pub_, tf_static_pub_, joints_pub_, left_pub_, right_pub_, left_info_pub_,
+      right_info_pub_;
+  mutable std::mutex mutex_;
+  std::vector<Sink> sinks_;
+  std::map<std::string, std::map<ros::Time, Clock::time_point>> arrivals_;
+  std::vector<Clock::time_point> published_;
+  std::map<ros::Time, size_t> index_;
+  double cpu_total_ = 0.0;
+
+public:
+  /// "<phase>: <stage>" -> latency p50/p95 [ms], frames given, CPU per input [ms] and share of the phase's CPU.
+  nlohmann::ordered_json stage_rows_;
+};
+
+/// The bag's stereo frames (left/right image_raw + camera_info with equal stamps), `loops` times, each loop
+/// shifted past the previous one so that time never goes backwards; the tf and joint states between frames.
+std::vector<Frame> readFrames(const std::string& path, int loops, std::vector<tf2_msgs::TFMessageConstPtr>& statics)
+{
+  rosbag::Bag bag(path, rosbag::bagmode::Read);
+  rosbag::View view(bag);
+  std::map<ros::Time, Frame> by_stamp;
+  std::vector<std::pair<ros::Time, tf2_msgs::TFMessageConstPtr>> tf;
+  std::vector<std::pair<ros::Time, sensor_msgs::JointStateConstPtr>> joints;
+  for (const rosbag::MessageInstance& m : view)
+  {
+    const std::string& t = m.getTopic();
+    if (t == "/stereo/left/image_raw" || t == "/stereo/right/image_raw")
+    {
+      auto img = m.instantiate<sensor_msgs::Image>();
+      Frame& f = by_stamp[img->header.stamp];
+      f.stamp = img->header.stamp;
+      (t == "/stereo/left/image_raw" ? f.left : f.right) = img;
+    }
+    else if (t == "/stereo/left/camera_info" || t == "/stereo/right/camera_info")
+    {
+      auto info = m.instantiate<sensor_msgs::CameraInfo>();
+      Frame& f = by_stamp[info->header.stamp];
+      f.stamp = info->header.stamp;
+      (t == "/stereo/left/camera_info" ? f.left_info : f.right_info) = info;
+    }
+    else if (t == "/tf")
+      tf.emplace_back(m.getTime(), m.instantiate<tf2_msgs::TFMessage>());
+    else if (t == "/tf_static")
+      statics.push_back(m.instantiate<tf2_msgs::TFMessage>());
+    else if (t == "/joint_states")
+      joints.emplace_back(m.getTime(), m.instantiate<sensor_msgs::JointState>());
+  }
+  std::vector<Frame> base;
+  for (auto& [stamp, f] : by_stamp)
+    if (f.left && f.right && f.left_info && f.right_info)
+      base.push_back(f);
+  if (base.size() < 2)
+    throw std::runtime_error(path +
+                             ": fewer than 2 complete stereo frames (/stereo/{left,right}/image_raw + camera_info)");
+  const ros::Duration span = base.back().stamp - base.front().stamp + ros::Duration(1.0);
+  std::vector<Frame> frames;
+  for (int loop = 0; loop < loops; ++loop)
+  {
+    const ros::Duration offset = span * loop;
+    size_t ti = 0, ji = 0;
+    for (const Frame& b : base)
+    {
+      Frame f;
+      f.stamp = b.stamp + offset;
+      f.left = restamped(b.left, offset);
+      f.right = restamped(b.right, offset);
+      f.left_info = restamped(b.left_info, offset);
+      f.right_info = restamped(b.right_info, offset);
+      for (; ti < tf.size() && tf[ti].first <= b.stamp; ++ti)
+      {
+        auto c = boost::make_shared<tf2_msgs::TFMessage>(*tf[ti].second);
+        for (auto& tr : c->transforms)
+          tr.header.stamp += offset;
+        f.tf.push_back(c);
+      }
+      for (; ji < joints.size() && joints[ji].first <= b.stamp; ++ji)
+        f.joints.push_back(restamped(joints[ji].second, offset));
+      frames.push_back(f);
+    }
+  }
+  return frames;
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  std::string bag_path, json_path, phases_list = "frontend,ours,peer";
+  int loops = 3, in_flight = 2, warmup = 5, opencv_threads = 1;
+  double timeout = 20.0;
+  biovision_common::ToolOptions options("loop_bench", kDescription);
+  CLI::App& app = options.app();
+  app.add_option("--bag", bag_path, "the bag (stereo/{left,right}/image_raw + camera_info, tf)")->required();
+  app.add_option("--loops", loops, "times the bag's frames are replayed")->check(biovision_common::kPositive);
+  app.add_option("--in-flight", in_flight, "unfinished frames allowed at once")->check(biovision_common::kPositive);
+  app.add_option("--warmup", warmup, "first frames left out of the figures")->check(biovision_common::kNonNegative);
+  app.add_option("--opencv-threads", opencv_threads,
+                 "OpenCV's parallel_for_ threads (1: stages run in parallel on the manager's workers, and each "
+                 "stage's CPU is its callback thread's)")
+      ->check(biovision_common::kPositive);
+  app.add_option("--phases", phases_list, "comma list of frontend, ours, peer");
+  app.add_option("--timeout", timeout, "[s] longest wait for a frame")->check(biovision_common::kPositive);
+  app.add_option("--json", json_path, "write the figures to this file");
+  options.parse(argc, argv);
+
+  ros::init(argc, argv, "loop_bench");
+  cv::setNumThreads(opencv_threads);
+  ros::NodeHandle nh;
+  // This process is the nodelet manager: loop_bench.launch's `nodelet load ... /loop_bench` lands here.
+  nodelet::Loader manager(ros::NodeHandle("~"));
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+
+  std::vector<tf2_msgs::TFMessageConstPtr> statics;
+  std::vector<Frame> frames = readFrames(bag_path, loops, statics);
+  if (static_cast<int>(frames.size()) <= warmup)
+  {
+    std::cerr << "loop_bench: " << frames.size() << " frames, not more than --warmup " << warmup << "\n";
+    return 2;
+  }
+  std::cout << "loop_bench: " << frames.size() << " stereo frames (" << loops << " loops of " << bag_path << ")"
+            << std::endl;
+  LoopBench bench(nh, frames, in_flight, warmup, timeout);
+  bench.publishStatic(statics);
+
+  const Sink rect_left{"stereo/left/image_rect_color", "rectification (debayer + rectify, left)", "", true, ""};
+  const Sink rect_right{"stereo/right/image_rect_color", "rectification (debayer + rectify, right)", "", true, ""};
+  std::map<std::string, Phase> phases;
+  phases["frontend"] = {"frontend", {rect_left, rect_right}, {}};
+  phases["ours"] = {"ours",
+                    {rect_left,
+                     rect_right,
+                     {"stereo/disparity", "stereo: BioBin multi-scale", "stereo/right/image_rect_color", true,
+                      "/stereo/biobin_disparity"},
+                     {"saliency/regions", "saliency", "stereo/left/image_rect_color", true, "/saliency"},
+                     {"objects", "recognition", "stereo/left/image_rect_color", true, "/recognition"},
+                     {"keypoints", "V1 keypoints", "stereo/left/image_rect_color", true, "/v1_cells"}},
+                    {"memory/stm"}};
+  phases["peer"] = {"peer",
+                    {rect_left,
+                     rect_right,
+                     {"peer/disparity", "stereo: stereo_image_proc SGBM", "stereo/right/image_rect_color", true, ""},
+                     {"peer/saliency/regions", "saliency: spectral residual", "stereo/left/image_rect_color", true, ""},
+                     {"peer/objects", "saliency + recognition: spectral residual, ORB + BFMatcher",
+                      "stereo/left/image_rect_color", true, "/peer_recognition"}},
+                    {}};
+
+  nlohmann::ordered_json figures;
+  figures["command"] = "roslaunch biovision_bringup loop_bench.launch (loop_bench " + options.command() + ")";
+  figures["bag"] = bag_path;
+  figures["cpu"] = biovision_common::CpuFeatures::host().describe();
+  figures["hardware_threads"] = std::thread::hardware_concurrency();
+  figures["opencv_threads"] = opencv_threads;
+  figures["in_flight"] = in_flight;
+  int status = 0;
+  std::stringstream list(phases_list);
+  std::string name;
+  while (std::getline(list, name, ','))
+  {
+    if (!phases.count(name))
+    {
+      std::cerr << "loop_bench: unknown phase '" << name << "'\n";
+      return 2;
+    }
+    try
+    {
+      figures[name] = bench.run(phases[name]);
+      std::cout << name << ": " << figures[name].dump(2) << std::endl;
+    }
+    catch (const std::exception& e)
+    {
+      std::cerr << "loop_bench: " << e.what() << "\n";
+      figures[name] = {{"error", e.what()}};
+      status = 1;
+    }
+  }
+  if (figures.contains("ours") && figures.contains("peer") && figures["ours"].contains("frames_per_s") &&
+      figures["peer"].contains("frames_per_s"))
+  {
+    figures["ours_vs_peer_time"] = figures["peer"]["frames_per_s"].get<double>() /
+                                   figures["ours"]["frames_per_s"].get<double>();
+    figures["goal"] = ">= 15 frames/s end to end on 2 cores, and ours_vs_peer_time <= 1.5";
+  }
+  for (const auto& [k, v] : bench.stage_rows_.items())
+    figures[k] = v;
+  if (!json_path.empty())
+    biovision_common::writeJsonFile(json_path, figures);
+  spinner.stop();
+  ros::shutdown();
+  return status;
+}

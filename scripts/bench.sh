@@ -4,6 +4,7 @@
 set -uo pipefail
 cd "$(dirname "$0")/.."
 export PATH=/usr/bin:/bin:$PATH
+BIOVISION_BENCH=1 bash scripts/setup.sh  # the benchmark-only data packages
 set +u; source devel/setup.bash; set -u
 out=out/bench
 mkdir -p "$out"

@@ -29,9 +29,6 @@ PACKAGES=(
   # real images for the demo that need no ../shared (/usr/share/doc/opencv-doc/examples/data); also the
   # descriptor's held-out evaluation material (graf1/graf3 + H1to3p, never trained on)
   opencv-doc
-  # biovision_recognition: image collections in the descriptor's training corpus and held-out split
-  # (train_descriptor/descriptor_eval --images; data only)
-  visp-images-data python3-skimage
   # libraries the ROS-free cores use
   libopencv-dev libopencv-contrib-dev libeigen3-dev liblinear-dev libyaml-cpp-dev
   # biovision_common: tool options, JSON, CRC
@@ -45,6 +42,12 @@ PACKAGES=(
   # the rviz rostest: screenshots of its private Xvfb display (Xlib)
   libx11-dev
 )
+# `make bench` only (scripts/bench.sh sets BIOVISION_BENCH=1): image collections of biovision_recognition's
+# descriptor training corpus and held-out split (train_descriptor/descriptor_eval --images; data only,
+# 250 MB, so build, test and demo do not download them).
+if [[ ${BIOVISION_BENCH:-0} == 1 ]]; then
+  PACKAGES+=(visp-images-data python3-skimage)
+fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do

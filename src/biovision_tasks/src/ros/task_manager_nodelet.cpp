@@ -143,7 +143,8 @@ void TaskManagerNodelet::onObjects(const biovision_msgs::RecognizedObjectArrayCo
   geometry_msgs::TransformStamped t;
   try
   {
-    t = tf_buffer_.lookupTransform(map_frame_, msg->header.frame_id, msg->header.stamp, ros::Duration(0.25));  // map -> odom comes at 10 Hz
+    t = tf_buffer_.lookupTransform(map_frame_, msg->header.frame_id, msg->header.stamp,
+                                   ros::Duration(0.25));  // map -> odom comes at 10 Hz
   }
   catch (const tf2::TransformException& e)
   {

@@ -127,6 +127,15 @@ MemoryDatabase::~MemoryDatabase()
     ::close(lock_fd_);
 }
 
+void MemoryDatabase::checkReinforcement(const std::string& row, sqlite3_stmt* statement, int first) const
+{
+  checkValue(row, "strength", sqlite3_column_double(statement, first), 0, kMaxStrength);
+  checkValue(row, "observations", sqlite3_column_double(statement, first + 1), 0, 4294967295.0);
+  checkValue(row, "first_seen", sqlite3_column_double(statement, first + 2), -kMaxTime, kMaxTime);
+  checkValue(row, "last_seen", sqlite3_column_double(statement, first + 3), -kMaxTime, kMaxTime);
+  checkValue(row, "last_change", sqlite3_column_double(statement, first + 4), -kMaxTime, kMaxTime);
+}
+
 void MemoryDatabase::checkValue(const std::string& row, const char* field, double value, double low, double high) const
 {
   if (!std::isfinite(value) || value < low || value > high)
@@ -282,11 +291,7 @@ std::vector<LongTermMemory::Cell> MemoryDatabase::loadCells() const
     c.last_seen = sqlite3_column_double(s.get(), 5);
     c.last_change = sqlite3_column_double(s.get(), 6);
     const std::string row = "ltm_cells row (" + std::to_string(c.ix) + ", " + std::to_string(c.iy) + ")";
-    checkValue(row, "strength", sqlite3_column_double(s.get(), 2), 0, kMaxStrength);
-    checkValue(row, "observations", sqlite3_column_double(s.get(), 3), 0, 4294967295.0);
-    checkValue(row, "first_seen", c.first_seen, -kMaxTime, kMaxTime);
-    checkValue(row, "last_seen", c.last_seen, -kMaxTime, kMaxTime);
-    checkValue(row, "last_change", c.last_change, -kMaxTime, kMaxTime);
+    checkReinforcement(row, s.get(), 2);
     cells.push_back(c);
   }
   if (rc != SQLITE_DONE)
@@ -321,11 +326,7 @@ std::vector<ObjectMemory::Object> MemoryDatabase::loadObjects() const
     checkValue(row, "x", o.position.x(), -kMaxCoordinate, kMaxCoordinate);
     checkValue(row, "y", o.position.y(), -kMaxCoordinate, kMaxCoordinate);
     checkValue(row, "z", o.position.z(), -kMaxCoordinate, kMaxCoordinate);
-    checkValue(row, "strength", sqlite3_column_double(s.get(), 4), 0, kMaxStrength);
-    checkValue(row, "observations", sqlite3_column_double(s.get(), 5), 0, 4294967295.0);
-    checkValue(row, "first_seen", o.first_seen, -kMaxTime, kMaxTime);
-    checkValue(row, "last_seen", o.last_seen, -kMaxTime, kMaxTime);
-    checkValue(row, "last_change", o.last_change, -kMaxTime, kMaxTime);
+    checkReinforcement(row, s.get(), 4);
     objects.push_back(o);
   }
   if (rc != SQLITE_DONE)

@@ -11,6 +11,7 @@
 #include "biovision_memory/object_memory.hpp"
 
 struct sqlite3;
+struct sqlite3_stmt;
 
 namespace biovision_memory
 {
@@ -88,6 +89,9 @@ private:
   void exec(const std::string& sql) const;
   std::string fail(const std::string& what) const;
   void checkValue(const std::string& row, const char* field, double value, double low, double high) const;
+  /// The reinforcement fields every table keeps in this order from column `first`: strength, observations,
+  /// first_seen, last_seen, last_change.
+  void checkReinforcement(const std::string& row, sqlite3_stmt* statement, int first) const;
 
   std::string path_;
   Options options_;

@@ -100,6 +100,22 @@ double BaseAttractor::clearanceAhead(const std::vector<Sector>& stm) const
   return clearance;
 }
 
+bool BaseAttractor::blindAhead(const std::vector<Sector>& stm) const
+{
+  // A sector is crossed by the swept corridor within blind_distance when its nearest edge is closer to the
+  // heading than asin(half corridor / blind_distance); one the STM does not know may hide an obstacle.
+  const double half_corridor = p_.robot_radius + p_.corridor_margin;
+  const double front = std::asin(std::min(1.0, half_corridor / p_.blind_distance));
+  for (const Sector& s : stm)
+  {
+    if (!std::isfinite(s.angle) || !std::isfinite(s.width))
+      continue;
+    if (std::max(0.0, std::abs(wrap(s.angle)) - s.width / 2) < front && confidenceOf(s) < p_.min_confidence)
+      return true;
+  }
+  return false;
+}
+
 int BaseAttractor::freerSide(const std::vector<Sector>& stm, double goal_bearing) const
 {
   // Clearance summed over the front sectors (up to 70 deg) of either side; unknown or free = max_range.
@@ -234,6 +250,8 @@ BaseAttractor::Output BaseAttractor::update(const std::vector<Sector>& stm, doub
               confidenceOf(s) < p_.min_confidence)
             v = std::min(v, 0.2 * p_.max_linear);
         }
+      if (blindAhead(stm))
+        v = std::min(v, p_.blind_speed);
       if (std::isfinite(goal_distance))
         v = std::min(v, std::sqrt(2 * 0.8 * p_.linear_accel * std::max(0.0, goal_distance - p_.goal_tolerance / 2)));
       const double c = out.front_clearance;

@@ -26,6 +26,8 @@ const std::vector<BaseAttractorParameters::Named>& BaseAttractorParameters::name
       {"corridor_margin", &P::corridor_margin, 0.0, 1.0},
       {"turn_slowdown", &P::turn_slowdown, 0.1, 20.0},
       {"blind_turn_rate", &P::blind_turn_rate, 0.0, 20.0},
+      {"blind_speed", &P::blind_speed, 0.0, 1.2},
+      {"blind_distance", &P::blind_distance, 0.01, 10.0},
       {"heading_stop_angle", &P::heading_stop_angle, 0.1, 3.1416},
       {"goal_tolerance", &P::goal_tolerance, 0.01, 2.0},
       {"trap_time", &P::trap_time, 1.0, 600.0},

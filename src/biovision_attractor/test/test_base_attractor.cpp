@@ -118,6 +118,23 @@ TEST(BaseAttractorFixedPoints, ObstacleDeadAheadTurnsAndSlowsDown)
   EXPECT_LT(settle(a, ahead, 0.0).angular, -0.1);
 }
 
+TEST(BaseAttractorFixedPoints, AnUnknownSectorInTheCorridorAheadLimitsTheSpeedToBlindSpeed)
+{
+  BaseAttractor a{BaseAttractorParameters()};
+  const double blind = a.parameters().blind_speed;
+  auto sectors = freeSectors();
+  EXPECT_GT(settle(a, sectors, 0.0).linear, 2 * blind) << "all known free: full speed";
+  // The sector right of dead ahead (-30..-10 deg) crosses the corridor within blind_distance.
+  sectors[at(-20)].confidence = 0.0;
+  a.reset();
+  EXPECT_LE(settle(a, sectors, 0.0).linear, blind + 1e-9);
+  // A side sector (-50..-30 deg) does not: the corridor (0.36 m half width) leaves it beyond 0.72 m.
+  sectors = freeSectors();
+  sectors[at(-40)].confidence = 0.0;
+  a.reset();
+  EXPECT_GT(settle(a, sectors, 0.0).linear, 2 * blind);
+}
+
 TEST(BaseAttractorFixedPoints, FreeSpaceExertsNothing)
 {
   BaseAttractor a{BaseAttractorParameters()};

@@ -1,5 +1,6 @@
 #include "biovision_tasks/exploration_planner.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -11,10 +12,41 @@ ExplorationPlanner::ExplorationPlanner(const TaskParameters& parameters) : param
 {
 }
 
-std::pair<int, int> ExplorationPlanner::cellOf(const cv::Point2d& p) const
+namespace
+{
+// A cell of the LTM holding an obstacle (not merely unknown): what blocks the view and walls off a frontier.
+bool obstacleAt(const OccupancyMap& map, const cv::Point2d& p, int threshold)
+{
+  int r, c;
+  if (map.empty() || !map.cellOf(p.x, p.y, r, c))
+    return false;
+  const unsigned char v = map.cells()(r, c);
+  return v != OccupancyMap::kUnknown && v >= threshold;
+}
+
+// True when the straight segment a-b passes no LTM obstacle (sampled at a quarter cell).
+bool inSight(const OccupancyMap& map, const cv::Point2d& a, const cv::Point2d& b, int threshold)
+{
+  if (map.empty())
+    return true;
+  const double length = std::hypot(b.x - a.x, b.y - a.y);
+  const int n = std::max(1, static_cast<int>(std::ceil(length / (map.cellSize() / 4))));
+  for (int i = 1; i <= n; ++i)
+    if (obstacleAt(map, a + (b - a) * (static_cast<double>(i) / n), threshold))
+      return false;
+  return true;
+}
+}  // namespace
+
+ExplorationPlanner::Cell ExplorationPlanner::cellOf(const cv::Point2d& p) const
 {
   return {static_cast<int>(std::floor(p.x / parameters_.visit_cell)),
           static_cast<int>(std::floor(p.y / parameters_.visit_cell))};
+}
+
+cv::Point2d ExplorationPlanner::centreOf(const Cell& c) const
+{
+  return {(c.first + 0.5) * parameters_.visit_cell, (c.second + 0.5) * parameters_.visit_cell};
 }
 
 void ExplorationPlanner::recordVisit(const Percept& percept)
@@ -22,6 +54,99 @@ void ExplorationPlanner::recordVisit(const Percept& percept)
   if (percept.pose_valid && last_time_ >= 0 && percept.time > last_time_)
     visits_[cellOf({percept.pose.x, percept.pose.y})] += std::min(percept.time - last_time_, 1.0);
   last_time_ = percept.time;
+  markSeen(percept);
+}
+
+void ExplorationPlanner::markSeen(const Percept& percept)
+{
+  if (!percept.pose_valid || !(parameters_.view_range > 0))
+    return;
+  const cv::Point2d here(percept.pose.x, percept.pose.y);
+  seen_.insert(cellOf(here));
+  const bool directed = std::isfinite(percept.view_yaw);
+  const double fan = directed ? parameters_.view_angle : 2 * M_PI;
+  const double centre = directed ? percept.view_yaw : 0.0;
+  // Rays half a coverage cell apart at the far end; steps of half an LTM cell along each (no wall is
+  // stepped over), up to an LTM obstacle.
+  const double spacing = parameters_.visit_cell / 2;
+  const double step = percept.map.empty() ? spacing : std::min(spacing, percept.map.cellSize() / 2);
+  const int rays = std::max(2, static_cast<int>(std::ceil(fan * parameters_.view_range / spacing)));
+  const int steps = static_cast<int>(std::ceil(parameters_.view_range / step));
+  for (int k = 0; k <= rays; ++k)
+  {
+    const double a = centre - fan / 2 + fan * k / rays;
+    const cv::Point2d direction(std::cos(a), std::sin(a));
+    for (int i = 1; i <= steps; ++i)
+    {
+      const cv::Point2d p = here + direction * std::min(i * step, parameters_.view_range);
+      if (obstacleAt(percept.map, p, parameters_.occupied_threshold))
+        break;
+      seen_.insert(cellOf(p));
+    }
+  }
+}
+
+bool ExplorationPlanner::seen(const cv::Point2d& point) const
+{
+  return seen_.count(cellOf(point)) > 0;
+}
+
+bool ExplorationPlanner::frontier(const Percept& percept, const cv::Point2d& home, cv::Point2d& goal) const
+{
+  cv::Mat1b blocked;
+  if (!percept.map.empty())
+    blocked = percept.map.inflatedObstacles(parameters_.occupied_threshold,
+                                            parameters_.robot_radius + parameters_.inflation_margin);
+  return frontier(percept, home, blocked, goal);
+}
+
+bool ExplorationPlanner::frontier(const Percept& percept, const cv::Point2d& home, const cv::Mat1b& blocked,
+                                  cv::Point2d& goal) const
+{
+  if (!percept.pose_valid || !(parameters_.view_range > 0))
+    return false;
+  const cv::Point2d here(percept.pose.x, percept.pose.y);
+  const int threshold = parameters_.occupied_threshold;
+  std::vector<std::pair<double, cv::Point2d>> frontiers;
+  for (const Cell& c : seen_)
+  {
+    const cv::Point2d p = centreOf(c);
+    const double distance = std::hypot(p.x - here.x, p.y - here.y);
+    // Too near to be worth a drive (the look round reveals it); boring: a goal the base could not reach.
+    if (distance < 2 * parameters_.visit_cell || visits(p) >= 30.0)
+      continue;
+    int r, col;
+    if (!blocked.empty() && percept.map.cellOf(p.x, p.y, r, col) && blocked(r, col))
+      continue;
+    bool frontier = false;
+    for (const Cell& n : {Cell{c.first + 1, c.second}, Cell{c.first - 1, c.second}, Cell{c.first, c.second + 1},
+                          Cell{c.first, c.second - 1}})
+      if (!seen_.count(n) && inSight(percept.map, p, centreOf(n), threshold))
+        frontier = true;
+    if (!frontier)
+      continue;
+    const double turn = std::abs(std::remainder(std::atan2(p.y - here.y, p.x - here.x) - percept.pose.yaw, 2 * M_PI));
+    // Metres of driving, a little for turning and for boredom, and home_range_cost per metre from home.
+    const double score = distance + 0.3 * turn + 0.1 * visits(p) +
+                         parameters_.home_range_cost * std::hypot(p.x - home.x, p.y - home.y);
+    frontiers.emplace_back(score, p);
+  }
+  std::sort(frontiers.begin(), frontiers.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  GridPlanner::Options o;
+  o.occupied_threshold = parameters_.occupied_threshold;
+  o.radius = parameters_.robot_radius + parameters_.inflation_margin;
+  int r, c;
+  const bool start_in_map = !percept.map.empty() && percept.map.cellOf(here.x, here.y, r, c);
+  // Planning is the expensive part: only the best few are checked for a way there.
+  for (size_t k = 0; k < frontiers.size() && k < 8; ++k)
+  {
+    const cv::Point2d& p = frontiers[k].second;
+    if (start_in_map && percept.map.cellOf(p.x, p.y, r, c) && GridPlanner::plan(percept.map, here, p, o).empty())
+      continue;
+    goal = p;
+    return true;
+  }
+  return false;
 }
 
 void ExplorationPlanner::markBoring(const cv::Point2d& point, double seconds)
@@ -49,6 +174,8 @@ bool ExplorationPlanner::nextGoal(const Percept& percept, const cv::Point2d& hom
   cv::Mat1b blocked;
   if (!percept.map.empty())
     blocked = percept.map.inflatedObstacles(o.occupied_threshold, o.radius);
+  if (frontier(percept, home, blocked, goal))
+    return true;
   double best = std::numeric_limits<double>::infinity();
   bool found = false;
   for (int ring = 1; ring <= 2; ++ring)

@@ -129,8 +129,8 @@ void GoToTask::onAct(const Percept& percept, MotorCommand& command)
     command.base = MotorCommand::Base::Stop;
     return;
   }
-  if (percept.base_trapped && stuck_since_ == percept.time)  // trapped just now: a fresh plan
-    path_.setGoal(aimPoint(percept), goal_.target != Target::Forward);
+  if (percept.base_trapped && stuck_since_ == percept.time)  // trapped just now: a fresh plan round what stops it
+    path_.blockAhead(percept);
   const cv::Point2d w = path_.waypoint(percept);
   command.base = MotorCommand::Base::Goal;
   command.goal_x = w.x;

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include <opencv2/imgproc.hpp>
+
 #include "biovision_tasks/grid_planner.hpp"
 
 namespace biovision_tasks
@@ -15,6 +17,16 @@ void PathFollower::setGoal(const cv::Point2d& goal, bool plan)
   goal_ = goal;
   plan_ = plan;
   waypoints_.clear();
+  blocked_points_.clear();
+  replanSoon();
+}
+
+void PathFollower::blockAhead(const Percept& percept)
+{
+  if (!percept.pose_valid)
+    return;
+  blocked_points_.emplace_back(percept.pose.x + 0.5 * std::cos(percept.pose.yaw),
+                               percept.pose.y + 0.5 * std::sin(percept.pose.yaw));
   replanSoon();
 }
 
@@ -30,8 +42,21 @@ cv::Point2d PathFollower::waypoint(const Percept& percept)
       GridPlanner::Options o;
       o.occupied_threshold = parameters_.occupied_threshold;
       o.radius = parameters_.robot_radius + parameters_.inflation_margin;
-      waypoints_ = GridPlanner::plan(percept.map, {percept.pose.x, percept.pose.y}, goal_, o);
-      blocked_ = percept.map.inflatedObstacles(o.occupied_threshold, o.radius);
+      OccupancyMap map = percept.map;
+      if (!blocked_points_.empty())
+      {
+        cv::Mat1b cells = percept.map.cells().clone();
+        for (const cv::Point2d& b : blocked_points_)
+        {
+          int r, c;
+          if (map.cellOf(b.x, b.y, r, c))
+            cv::circle(cells, {c, r}, std::max(1, static_cast<int>(parameters_.robot_radius / map.cellSize())),
+                       cv::Scalar(100), cv::FILLED);
+        }
+        map = OccupancyMap(cells, map.originX(), map.originY(), map.cellSize());
+      }
+      waypoints_ = GridPlanner::plan(map, {percept.pose.x, percept.pose.y}, goal_, o);
+      blocked_ = map.inflatedObstacles(o.occupied_threshold, o.radius);
     }
     if (waypoints_.empty())
       waypoints_.push_back(goal_);

@@ -32,6 +32,8 @@ void TaskParameters::validate() const
   check("explore_period", explore_period, 1.0, 600.0);
   check("look_time", look_time, 0.0, 600.0);
   check("visit_cell", visit_cell, 0.05, 5.0);
+  check("view_range", view_range, 0.0, 20.0);
+  check("view_angle", view_angle, 0.01, 6.3);
   check("home_range_cost", home_range_cost, 0.0, 100.0);
   check("trapped_timeout", trapped_timeout, 1.0, 3600.0);
   check("stall_time", stall_time, 1.0, 3600.0);
@@ -54,6 +56,8 @@ const std::vector<std::pair<std::string, double TaskParameters::*>>& TaskParamet
       {"explore_period", &TaskParameters::explore_period},
       {"look_time", &TaskParameters::look_time},
       {"visit_cell", &TaskParameters::visit_cell},
+      {"view_range", &TaskParameters::view_range},
+      {"view_angle", &TaskParameters::view_angle},
       {"home_range_cost", &TaskParameters::home_range_cost},
       {"trapped_timeout", &TaskParameters::trapped_timeout},
       {"stall_time", &TaskParameters::stall_time},

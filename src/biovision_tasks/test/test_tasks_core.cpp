@@ -1,6 +1,7 @@
 // Unit tests of the ROS-free task manager (thesis §5.3.3): block buffers, recursion, time-outs, failure
 // policies, the grid planner, mission parsing, and the simple macro-tasks on a kinematic point robot.
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -8,9 +9,11 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
+#include "biovision_tasks/exploration_planner.hpp"
 #include "biovision_tasks/go_to_task.hpp"
 #include "biovision_tasks/grid_planner.hpp"
 #include "biovision_tasks/macro_task.hpp"
+#include "biovision_tasks/path_follower.hpp"
 #include "biovision_tasks/search_task.hpp"
 #include "biovision_tasks/task_manager.hpp"
 #include "biovision_tasks/task_spec.hpp"
@@ -279,6 +282,77 @@ TEST(GridPlanner, GoesAroundAWallAndKeepsClearOfIt)
     }
     from = to;
   }
+}
+
+TEST(ExplorationPlanner, HeadsForAFrontierOfWhatTheCameraSawButNotOneBehindAWall)
+{
+  TaskParameters parameters;
+  Percept p;
+  p.pose_valid = true;
+  p.pose = {-4.0, 0.0, 0.0};
+  p.view_yaw = 0.0;  // looking east
+  cv::Mat1b cells(100, 100, uchar(0));
+  cv::rectangle(cells, cv::Rect(0, 0, 100, 100), 100, 2);
+  p.map = OccupancyMap(cells, -5, -5, 0.1);
+  ExplorationPlanner open(parameters);
+  open.recordVisit(p);
+  cv::Point2d goal;
+  ASSERT_TRUE(open.frontier(p, {-4.0, 0.0}, goal));
+  EXPECT_TRUE(open.seen(goal));
+  const double d = std::hypot(goal.x + 4.0, goal.y);
+  EXPECT_GE(d, 2 * parameters.visit_cell);
+  EXPECT_LE(d, parameters.view_range + parameters.visit_cell);
+  const double c = parameters.visit_cell;
+  EXPECT_TRUE(!open.seen(goal + cv::Point2d(c, 0)) || !open.seen(goal - cv::Point2d(c, 0)) ||
+              !open.seen(goal + cv::Point2d(0, c)) || !open.seen(goal - cv::Point2d(0, c)))
+      << "a frontier has an unseen neighbour";
+  EXPECT_FALSE(open.seen({3.0, 0.0})) << "beyond view_range";
+
+  // Walled in: the view (now 3 m, all round) stops at the walls and every unseen neighbour lies behind one.
+  cv::rectangle(cells, cv::Rect(5, 35, 26, 30), 100, 1);  // x -4.5..-1.9, y -1.5..1.5 round the robot
+  p.map = OccupancyMap(cells, -5, -5, 0.1);
+  p.view_yaw = std::numeric_limits<double>::quiet_NaN();
+  parameters.view_range = 3.0;
+  ExplorationPlanner boxed(parameters);
+  boxed.recordVisit(p);
+  EXPECT_TRUE(boxed.seen({-2.25, 1.25}));
+  EXPECT_FALSE(boxed.seen({-1.25, 0.0}));
+  EXPECT_FALSE(boxed.frontier(p, {-4.0, 0.0}, goal)) << goal.x << ", " << goal.y;
+  // The same box with a door in its east wall: the doorway is a frontier.
+  cv::line(cells, {30, 45}, {30, 54}, 0);  // y -0.5..0.4 at x = -2.0
+  p.map = OccupancyMap(cells, -5, -5, 0.1);
+  ExplorationPlanner door(parameters);
+  door.recordVisit(p);
+  ASSERT_TRUE(door.frontier(p, {-4.0, 0.0}, goal));
+  EXPECT_GT(goal.x, -2.5);
+  EXPECT_LT(std::abs(goal.y), 1.0);
+
+  parameters.view_range = 0;  // boredom only
+  ExplorationPlanner off(parameters);
+  p.map = OccupancyMap(cv::Mat1b(100, 100, uchar(0)), -5, -5, 0.1);
+  off.recordVisit(p);
+  EXPECT_FALSE(off.frontier(p, {-4.0, 0.0}, goal));
+}
+
+TEST(PathFollower, BlockAheadPlansRoundWhatStopsTheBase)
+{
+  TaskParameters parameters;
+  Percept p;
+  p.pose_valid = true;
+  p.pose = {-2.0, 0.0, 0.0};
+  p.map = OccupancyMap(cv::Mat1b(100, 100, uchar(0)), -5, -5, 0.1);
+  PathFollower follower(parameters);
+  follower.setGoal({2.0, 0.0});
+  const cv::Point2d straight = follower.waypoint(p);
+  EXPECT_NEAR(straight.x, 2.0, 1e-9);
+  EXPECT_NEAR(straight.y, 0.0, 1e-9);
+  follower.blockAhead(p);  // something half a metre ahead that the LTM does not hold
+  const cv::Point2d round = follower.waypoint(p);
+  EXPECT_GT(std::abs(round.y), parameters.robot_radius) << "the first waypoint leads round (-1.5, 0)";
+  ASSERT_GE(follower.waypoints().size(), 2u);
+  EXPECT_NEAR(follower.waypoints().back().x, 2.0, 1e-9);
+  follower.setGoal({2.0, 1.0});  // a new goal forgets the blocked discs
+  EXPECT_EQ(follower.waypoint(p), cv::Point2d(2.0, 1.0));
 }
 
 TEST(GridPlanner, NoPathWhenEnclosedOrTheGoalIsBlockedAndEscapesAFromAStartInTheInflation)

@@ -91,7 +91,7 @@ int main(int argc, char** argv)
       .add_option("--trials", trials, "number of rooms (the issue's N = 10)")
       ->check(biovision_common::kPositive);
   options.app()
-      .add_option("--split", split, "label recorded in the JSON: report (seeds 1-10) or tune (seeds 101-110)")
+      .add_option("--split", split, "label recorded in the JSON: report (seeds 1-10) or tune (seeds 101 and up)")
       ->check(CLI::IsMember({"report", "tune"}));
   options.app()
       .add_option("--timeout", trial.timeout, "[s] of simulated time per mission")
@@ -100,7 +100,9 @@ int main(int argc, char** argv)
       .add_option("--new-obstacles", trial.new_obstacles, "obstacles put on the way home")
       ->check(CLI::NonNegativeNumber);
   std::vector<std::string> settings;
-  options.app().add_option("--set", settings, "a task parameter NAME=VALUE (repeatable), e.g. home_range_cost=0.3");
+  options.app().add_option("--set", settings,
+                           "a task parameter NAME=VALUE or a base controller parameter base.NAME=VALUE (repeatable), "
+                           "e.g. home_range_cost=0.3 base.blind_speed=0.05");
   options.app().add_option("--json", json_path, "write the figures here");
   std::string plots_dir;
   options.app().add_option("--plots", plots_dir,
@@ -108,32 +110,41 @@ int main(int argc, char** argv)
   options.parse(argc, argv);
 
   TaskParameters tasks;
+  biovision_attractor::BaseAttractorParameters base;
   for (const std::string& s : settings)
   {
     const auto eq = s.find('=');
+    const std::string name = s.substr(0, eq);
     bool known = false;
-    for (const auto& [name, field] : TaskParameters::namedDoubles())
-      if (eq != std::string::npos && s.substr(0, eq) == name)
+    for (const auto& [task_name, field] : TaskParameters::namedDoubles())
+      if (eq != std::string::npos && name == task_name)
       {
         tasks.*field = std::stod(s.substr(eq + 1));
         known = true;
       }
+    for (const auto& named : biovision_attractor::BaseAttractorParameters::namedDoubles())
+      if (eq != std::string::npos && name == std::string("base.") + named.name)
+      {
+        base.*named.field = std::stod(s.substr(eq + 1));
+        known = true;
+      }
     if (!known)
     {
-      std::cerr << "mission_eval: --set " << s << ": not NAME=VALUE of a task parameter\n";
+      std::cerr << "mission_eval: --set " << s << ": not NAME=VALUE of a task parameter or base.NAME=VALUE of a base "
+                << "controller parameter\n";
       return 2;
     }
   }
   try
   {
     tasks.validate();
+    base.validate();
   }
   catch (const std::invalid_argument& e)
   {
     std::cerr << "mission_eval: " << e.what() << "\n";
     return 2;
   }
-  const biovision_attractor::BaseAttractorParameters base;
   const biovision_attractor::HeadAttractorParameters head;
   nlohmann::ordered_json document, per_trial = nlohmann::ordered_json::array();
   document["command"] = "rosrun biovision_tasks mission_eval " + options.command();
@@ -196,7 +207,10 @@ int main(int argc, char** argv)
       "TaskParameters: home_range_cost was chosen on seeds 101-110 (the tune split: 7/10 completed at 0.1, 7 at "
       "0.3, 4 at 0.5), look_time (stop and look round at each exploration goal, head looking ahead while "
       "driving) on seeds 101-130 (look_time 0: 25/30 completed, 36 collisions; 6: 24/30, 8 collisions), the "
-      "base's parameters on navigation_eval's seeds 101-120; nothing on these seeds. Once the "
+      "frontier exploration's view_range on seeds 101-160 (completed without a collision: boredom only 40/60, "
+      "1.5/2.0/2.5/3.0 m: 38/44/45/45), the base's blind_speed on seeds 101-130 (no limit: 8 collisions, 0.05 "
+      "m/s: 0 with boredom-only exploration) and 101-160, its other parameters on navigation_eval's seeds 101-120; "
+      "nothing on these seeds. Once the "
       "target is found, up to --new-obstacles boxes are put "
       "on the straight way home. STM and LTM are biovision_memory's, fed with ground-truth ranges across the "
       "camera's view (not stereo); recognition is an oracle (target centre in view within 3 m and not hidden, "

@@ -172,6 +172,7 @@ MissionTrialResult runMissionTrial(unsigned seed, const TaskParameters& tasks,
       p.time = t;
       p.pose = {pose.x, pose.y, pose.yaw};
       p.pose_valid = true;
+      p.view_yaw = pose.yaw + pan.position();
       p.map = ltmMap(ltm, room);
       p.base_trapped = trapped;
       for (const auto& s :

@@ -91,6 +91,7 @@ public:
 private:
   double clearanceAhead(const std::vector<Sector>& stm) const;
   int freerSide(const std::vector<Sector>& stm, double goal_bearing) const;
+  bool blindAhead(const std::vector<Sector>& stm) const;
   void updateTrapClock(double goal_distance, double t);
 
   BaseAttractorParameters p_;

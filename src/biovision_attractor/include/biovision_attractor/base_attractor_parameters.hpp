@@ -32,6 +32,11 @@ struct BaseAttractorParameters
   double corridor_margin = 0.1;   ///< [m] the swept corridor is robot_radius + this to either side
   double turn_slowdown = 2.0;     ///< [rad/s] the speed falls linearly to 0 as the commanded turn rate reaches this
   double blind_turn_rate = 0.3;   ///< [rad/s] a faster turn towards front sectors the STM does not know turns in place
+  double blind_speed = 0.05;      ///< [m/s] speed limit while a sector the swept corridor crosses within blind_distance
+      ///< is unknown to the STM: the camera glances ahead only part of the time (look_ahead)
+      ///< and an obstacle that appeared while it looked away is not in the STM (mission_eval
+      ///< tune seeds 101-130: no limit 8 collisions, 0.1: 3, 0.05: 0; docs/benchmarks.md)
+  double blind_distance = 1.0;      ///< [m] see blind_speed
   double heading_stop_angle = 1.6;  ///< [rad] the speed falls linearly to 0 when the goal is this far off the heading
   double goal_tolerance = 0.2;      ///< [m] reached: closer than this to the goal (then stops)
   // Trap detection (not in the thesis).

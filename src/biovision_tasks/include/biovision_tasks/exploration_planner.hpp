@@ -1,6 +1,7 @@
 #pragma once
 
 #include <map>
+#include <set>
 #include <utility>
 
 #include <opencv2/core.hpp>
@@ -10,18 +11,22 @@
 
 namespace biovision_tasks
 {
-/// Boredom-driven exploration (the exploration mode of thesis §5.3.3, whose strategy the thesis does not
-/// give): the robot counts the time it spends in each cell of a coarse grid (visit_cell) and picks as its
-/// next goal the candidate point (16 bearings × 1 and 2 × explore_step around it) that is least visited,
-/// free in the LTM and reachable over it, preferring its current heading a little and points near home
-/// (home_range_cost), so that it covers the area round home first. A point the base could
-/// not reach (it got trapped) becomes "boring" so another is picked. Deterministic: no random numbers.
+/// Exploration (the exploration mode of thesis §5.3.3, whose strategy the thesis does not give), frontier-
+/// first: cells of a coarse grid (visit_cell) that the camera has seen — within view_range, inside its view
+/// (view_angle about Percept::view_yaw; all round when that is unknown) and not behind an LTM obstacle —
+/// make up the coverage; the next goal is the nearest reachable frontier cell (seen, free, next to an unseen
+/// cell not walled off; Yamauchi 1997), preferring its heading a little and cells near home. Once no frontier
+/// is left, boredom: the time spent in each cell is counted and the goal is the candidate point (16 bearings ×
+/// 1 and 2 × explore_step) that is least visited, free in the LTM and reachable over it, preferring the
+/// heading and points near home (home_range_cost). A goal the base could not reach (it got trapped) becomes
+/// "boring" and is not a frontier any more. Deterministic: no random numbers.
 class ExplorationPlanner
 {
 public:
   explicit ExplorationPlanner(const TaskParameters& parameters);
 
-  /// Accumulates the time spent at the robot's current cell since the last call.
+  /// Accumulates the time spent at the robot's current cell since the last call and marks what the camera
+  /// sees now as covered.
   void recordVisit(const Percept& percept);
   /// Picks a new goal [m, map frame]; false when no candidate is free (then the caller turns in place).
   bool nextGoal(const Percept& percept, const cv::Point2d& home, cv::Point2d& goal);
@@ -29,12 +34,22 @@ public:
   void markBoring(const cv::Point2d& point, double seconds);
   /// Seconds spent in the cell of `point`.
   double visits(const cv::Point2d& point) const;
+  /// True when the cell of `point` has been seen (coverage).
+  bool seen(const cv::Point2d& point) const;
+  /// The best reachable frontier cell's centre [m, map] (the first choice of nextGoal); false when there is none
+  /// (all seen, walled off, boring or unreachable) or view_range is 0.
+  bool frontier(const Percept& percept, const cv::Point2d& home, cv::Point2d& goal) const;
 
 private:
-  std::pair<int, int> cellOf(const cv::Point2d& p) const;
+  using Cell = std::pair<int, int>;
+  Cell cellOf(const cv::Point2d& p) const;
+  cv::Point2d centreOf(const Cell& c) const;
+  void markSeen(const Percept& percept);
+  bool frontier(const Percept& percept, const cv::Point2d& home, const cv::Mat1b& blocked, cv::Point2d& goal) const;
 
   TaskParameters parameters_;
-  std::map<std::pair<int, int>, double> visits_;
+  std::map<Cell, double> visits_;
+  std::set<Cell> seen_;
   double last_time_ = -1;
 };
 }  // namespace biovision_tasks

@@ -23,6 +23,10 @@ public:
   void setGoal(const cv::Point2d& goal, bool plan = true);
   /// Replans at the next waypoint() call.
   void replanSoon() { planned_at_ = -1e18; }
+  /// The base is trapped: what stops it is in its STM but not (yet) in the LTM, so the plan keeps leading into
+  /// it. Marks a disc of robot_radius half a metre ahead of the base as an obstacle in every later plan of this
+  /// goal (a new goal forgets them) and replans.
+  void blockAhead(const Percept& percept);
   /// The waypoint to drive to now [m, map].
   cv::Point2d waypoint(const Percept& percept);
   const std::vector<cv::Point2d>& waypoints() const { return waypoints_; }
@@ -33,7 +37,8 @@ private:
   cv::Point2d goal_;
   bool plan_ = true;
   std::vector<cv::Point2d> waypoints_;
-  cv::Mat1b blocked_;  ///< the inflated obstacles of the last plan (empty: no map)
+  std::vector<cv::Point2d> blocked_points_;  ///< blockAhead()'s discs [m, map]
+  cv::Mat1b blocked_;                        ///< the inflated obstacles of the last plan (empty: no map)
   double planned_at_ = -1e18;
 };
 }  // namespace biovision_tasks

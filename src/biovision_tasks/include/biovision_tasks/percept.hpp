@@ -1,5 +1,6 @@
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -25,8 +26,9 @@ struct Percept
     double last_seen = 0;   ///< [s]
   };
 
-  double time = 0;                 ///< [s]; must not go backwards (the node resets the manager when it does)
-  Pose pose;                       ///< the robot's base_link in map
+  double time = 0;  ///< [s]; must not go backwards (the node resets the manager when it does)
+  Pose pose;        ///< the robot's base_link in map
+  double view_yaw = std::numeric_limits<double>::quiet_NaN();  ///< [rad] where the camera looks, in map; NaN: unknown
   bool pose_valid = false;         ///< false: no localisation this cycle (tf missing); tasks stop the base
   std::vector<Object> seen;        ///< recognised now (`objects` topic, placed in map)
   std::vector<Object> remembered;  ///< in the object/landmark memory (memory/ltm_items)

@@ -61,6 +61,7 @@ void TaskManagerNodelet::onInit()
   ros::NodeHandle& pnh = getPrivateNodeHandle();
   map_frame_ = pnh.param<std::string>("map_frame", "map");
   base_frame_ = pnh.param<std::string>("base_frame", "base_link");
+  camera_frame_ = pnh.param<std::string>("camera_frame", "stereo_left_optical");
   pose_timeout_ = pnh.param("pose_timeout", 1.0);
   seen_hold_ = pnh.param("seen_hold", 1.0);
   goal_refresh_ = pnh.param("goal_refresh", 10.0);
@@ -283,6 +284,21 @@ Percept TaskManagerNodelet::perceive(const ros::Time& now)
       p.pose = {t.transform.translation.x, t.transform.translation.y,
                 std::atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z))};
       p.pose_valid = std::isfinite(p.pose.x) && std::isfinite(p.pose.y) && std::isfinite(p.pose.yaw);
+    }
+  }
+  catch (const tf2::TransformException&)
+  {
+  }
+  try
+  {
+    const auto t = tf_buffer_.lookupTransform(map_frame_, camera_frame_, ros::Time(0));
+    if (t.header.stamp.isZero() || (now - t.header.stamp).toSec() <= pose_timeout_)
+    {
+      // The optical z axis (the viewing direction) in map: the third column of the rotation.
+      const auto& q = t.transform.rotation;
+      const double zx = 2 * (q.x * q.z + q.w * q.y), zy = 2 * (q.y * q.z - q.w * q.x);
+      if (std::hypot(zx, zy) > 1e-3)
+        p.view_yaw = std::atan2(zy, zx);
     }
   }
   catch (const tf2::TransformException&)

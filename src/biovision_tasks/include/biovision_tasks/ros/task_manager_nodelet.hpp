@@ -31,6 +31,8 @@ namespace biovision_tasks
 /// Nodelet biovision_tasks/TaskManagerNodelet; the node `task_manager` runs it alone.
 ///
 /// In: tf ~map_frame → ~base_frame (older than ~pose_timeout = no localisation: the base is stopped),
+/// tf ~map_frame → ~camera_frame (an optical frame, z = viewing direction: where the camera looks, for the
+/// exploration's coverage; missing: all round),
 /// `objects` (biovision_msgs/RecognizedObjectArray, positions in the camera frame, placed in map through
 /// tf; "in view" for ~seen_hold s), `memory/ltm` (nav_msgs/OccupancyGrid), `memory/ltm_items`
 /// (biovision_msgs/LtmItemArray: remembered objects), `attractor/base` (biovision_msgs/AttractorState of the
@@ -72,7 +74,7 @@ private:
   std::mutex mutex_;  // guards everything below against the subscriber, service and action threads
   TaskParameters parameters_;
   std::unique_ptr<TaskManager> manager_;
-  std::string map_frame_, base_frame_;
+  std::string map_frame_, base_frame_, camera_frame_;
   double pose_timeout_ = 1.0, seen_hold_ = 1.0, goal_refresh_ = 10.0;
 
   tf2_ros::Buffer tf_buffer_;

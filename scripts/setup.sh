@@ -44,9 +44,10 @@ PACKAGES=(
 )
 # `make bench` only (scripts/bench.sh sets BIOVISION_BENCH=1): image collections of biovision_recognition's
 # descriptor training corpus and held-out split (train_descriptor/descriptor_eval --images; data only,
-# 250 MB, so build, test and demo do not download them).
+# 250 MB, so build, test and demo do not download them); OpenCV's pretrained Haar/LBP face cascades,
+# the peers of biovision_hri's face detector (detector_eval --baseline-cascades, data only).
 if [[ ${BIOVISION_BENCH:-0} == 1 ]]; then
-  PACKAGES+=(visp-images-data python3-skimage)
+  PACKAGES+=(visp-images-data python3-skimage opencv-data)
 fi
 
 missing=()

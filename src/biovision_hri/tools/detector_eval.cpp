@@ -3,7 +3,9 @@
 // false-positive-per-window rate over every window of held-out scenes, DET points, full-image average
 // precision (faces: composites of held-out crops pasted into held-out scenes; hands: SubhiH photos and
 // LinTO frames), and the time per frame. --baseline-hog trains a classic OpenCV HOG + LIBLINEAR detector
-// and our features without hard negatives on identical patches in the same run, for a like-for-like DET.
+// and our features without hard negatives on identical patches in the same run, for a like-for-like DET;
+// --baseline-cascades adds OpenCV's pretrained Haar and LBP frontal-face cascades (Debian's opencv-data) on
+// the same held-out patches and composites.
 
 #include <chrono>
 #include <filesystem>
@@ -93,6 +95,54 @@ cv::Mat hogRows(const std::vector<cv::Mat>& patches, bool mirror)
   return rows;
 }
 
+/// OpenCV's pretrained frontal-face cascades from Debian's opencv-data: Haar features (Viola & Jones
+/// 2001; Lienhart & Maydt 2002's `frontalface_default`) and LBP features (Liao et al. 2007).
+struct CascadePeer
+{
+  std::string name, file;
+  cv::CascadeClassifier classifier;
+};
+
+constexpr float kRejected = -1e30f;  // a window some stage of a cascade rejected
+
+/// A cascade's score of one patch. The crops are tight and the cascades were trained with their own
+/// framing, so a patch is resized to 4/3 of the cascade's window and every window of the cascade inside
+/// it with side >= 3/4 of the patch (IoU with the patch >= 0.56; step 1.1 in scale, 2 px in place) is
+/// evaluated — positives and negatives alike — and the best is the patch's score: the last stage's sum of
+/// a window every stage passes, kRejected when none passes (OpenCV reports no score for windows an earlier
+/// stage rejects, so a cascade's DET ends at its own operating point).
+float cascadeScore(CascadePeer& peer, const cv::Mat& patch)
+{
+  const cv::Size window = peer.classifier.getOriginalWindowSize();
+  const cv::Size side(cvRound(window.width * 4.0 / 3.0), cvRound(window.height * 4.0 / 3.0));
+  cv::Mat p8, resized;
+  patch.convertTo(p8, CV_8U, 255.0);
+  cv::resize(p8, resized, side, 0, 0, p8.cols > side.width ? cv::INTER_AREA : cv::INTER_LINEAR);
+  std::vector<cv::Rect> found;
+  std::vector<int> levels;
+  std::vector<double> weights;
+  peer.classifier.detectMultiScale(resized, found, levels, weights, 1.1, 0, 0, window, side, true);
+  return weights.empty() ? kRejected : static_cast<float>(*std::max_element(weights.begin(), weights.end()));
+}
+
+/// Cascade detections on a full image (8-bit), OpenCV's defaults as a ROS user would call them
+/// (scale step 1.1, 3 neighbours), windows `min_side`..`max_side` px, scored by the last stage's sum.
+std::vector<std::pair<cv::Rect2f, float>> cascadeDetect(CascadePeer& peer, const cv::Mat& gray32, int min_side,
+                                                        int max_side)
+{
+  cv::Mat gray;
+  gray32.convertTo(gray, CV_8U, 255.0);
+  std::vector<cv::Rect> found;
+  std::vector<int> levels;
+  std::vector<double> weights;
+  peer.classifier.detectMultiScale(gray, found, levels, weights, 1.1, 3, 0, cv::Size(min_side, min_side),
+                                   cv::Size(max_side, max_side), true);
+  std::vector<std::pair<cv::Rect2f, float>> out;
+  for (size_t i = 0; i < found.size(); ++i)
+    out.emplace_back(cv::Rect2f(found[i]), i < weights.size() ? static_cast<float>(weights[i]) : 0.f);
+  return out;
+}
+
 /// A scene resized to `width` with `count` held-out crops pasted at random sizes and places (not
 /// overlapping); their rectangles are the ground truth.
 cv::Mat composite(const cv::Mat& scene, const std::vector<cv::Mat>& crops, size_t& next_crop, int count, int width,
@@ -132,7 +182,8 @@ int main(int argc, char** argv)
   std::string kind = "face", model_path, json_path, data = hriDataRoot("../shared"), split_name = "test";
   int max_positives = 0, max_scenes = 0, width = 320, timing_runs = 5, per_scene = 3, seed = 2;
   double fppw = 1e-4, full_threshold = -1.0;
-  bool baseline_hog = false;
+  bool baseline_hog = false, baseline_cascades = false;
+  std::string cascade_dir = "/usr/share/opencv4";
   SlidingWindowDetector::Parameters scan;
   biovision_common::ToolOptions options(
       "detector_eval",
@@ -155,6 +206,10 @@ int main(int argc, char** argv)
   app.add_option("--baseline-hog", baseline_hog,
                  "also train and test OpenCV HOG + LIBLINEAR (and ours without hard "
                  "negatives) on the same patches");
+  app.add_option("--baseline-cascades", baseline_cascades,
+                 "faces: also OpenCV's pretrained Haar and LBP frontal-face cascades on the same held-out "
+                 "patches and composites (Debian's opencv-data)");
+  app.add_option("--cascade-dir", cascade_dir, "where opencv-data put haarcascades/ and lbpcascades/");
   app.add_option("--seed", seed, "seed of the random patches and composites");
   app.add_option("--json", json_path, "write the results");
   options.parse(argc, argv);
@@ -170,11 +225,32 @@ int main(int argc, char** argv)
     const LinearDetectorModel model = LinearDetectorModel::load(model_path);
     if (model.kind != kind)
       throw std::runtime_error(model_path + " is a " + model.kind + " model");
+    std::vector<CascadePeer> cascades;
+    if (baseline_cascades)
+    {
+      if (kind != "face" || !baseline_hog)
+        throw std::runtime_error("--baseline-cascades needs --kind face and --baseline-hog true (the same patches)");
+      for (const auto& [name, file] :
+           {std::pair<std::string, std::string>{"opencv_haar_frontalface_default",
+                                                "haarcascades/haarcascade_frontalface_default.xml"},
+            {"opencv_lbp_frontalface", "lbpcascades/lbpcascade_frontalface.xml"},
+            {"opencv_lbp_frontalface_improved", "lbpcascades/lbpcascade_frontalface_improved.xml"}})
+      {
+        cascades.push_back({name, cascade_dir + "/" + file, cv::CascadeClassifier()});
+        if (!cascades.back().classifier.load(cascades.back().file))
+          throw std::runtime_error("cannot load the cascade " + cascades.back().file +
+                                   " (Debian's opencv-data: apt-get install opencv-data)");
+      }
+    }
     nlohmann::ordered_json doc;
     doc["tool"] = "detector_eval";
     doc["command"] = options.command();
     doc["kind"] = kind;
-    doc["model"] = model_path;
+    {  // workspace-relative when the model lies in the workspace (the docs name no machine's paths)
+      const fs::path ws = fs::weakly_canonical(fs::path(argv[0]).parent_path() / ".." / ".." / "..");
+      const fs::path mp = fs::weakly_canonical(model_path);
+      doc["model"] = mp.string().rfind(ws.string() + "/", 0) == 0 ? fs::relative(mp, ws).string() : model_path;
+    }
     doc["model_provenance"] = model.provenance;
     doc["reported_on"] = split_name;
     doc["threads"] = cv::getNumThreads();
@@ -281,11 +357,13 @@ int main(int argc, char** argv)
                 << static_cast<double>(fp_at_0) / std::max<size_t>(1, images.size()) << ", " << secondsSince(start)
                 << " s\n";
     };
+    std::vector<cv::Mat> composite_images;  // faces: kept for the cascades (section 6)
+    std::vector<std::vector<cv::Rect2f>> composite_truth;
     if (kind == "face")
     {
       cv::RNG rng(static_cast<uint64_t>(seed) + 1);
-      std::vector<cv::Mat> images;
-      std::vector<std::vector<cv::Rect2f>> truth;
+      std::vector<cv::Mat>& images = composite_images;
+      std::vector<std::vector<cv::Rect2f>>& truth = composite_truth;
       size_t next = 0;
       for (const cv::Mat& s : scenes)
       {
@@ -409,6 +487,75 @@ int main(int argc, char** argv)
                   << ns.size() << " random held-out patches), " << us << " us/patch, " << secondsSince(start) << " s\n";
       }
       doc["like_for_like"] = rows;
+
+      // 6. OpenCV's pretrained cascades on the same held-out crops and random patches, and the composites.
+      nlohmann::ordered_json cascade_rows = nlohmann::ordered_json::object();
+      for (CascadePeer& peer : cascades)
+      {
+        std::vector<float> ps, ns;
+        for (const cv::Mat& p : positives)
+          ps.push_back(cascadeScore(peer, p));
+        for (const cv::Mat& p : test_neg)
+          ns.push_back(cascadeScore(peer, p));
+        auto passed = [](const std::vector<float>& v) {
+          return static_cast<double>(std::count_if(v.begin(), v.end(), [](float x) { return x > kRejected; })) /
+                 v.size();
+        };
+        // The cascade's own operating point (every stage passed), and its DET below that FPPW, read by
+        // thresholding the last stage's sum; FPPW above its own point cannot be reached.
+        const double own_fppw = passed(ns), own_miss = 1.0 - passed(ps);
+        nlohmann::ordered_json row = {{"window", std::to_string(peer.classifier.getOriginalWindowSize().width) + "x" +
+                                                     std::to_string(peer.classifier.getOriginalWindowSize().height)},
+                                      {"cascade", peer.file},
+                                      {"own_operating_point_fppw", own_fppw},
+                                      {"own_operating_point_miss_rate", own_miss}};
+        if (own_fppw >= fppw)
+          row["miss_rate_at_fppw"] = missRateAtFppw(ps, ns, fppw);
+        else
+          row["miss_rate_at_fppw"] = nullptr;  // not reachable: the cascade stops below this FPPW
+        for (const char* name : {"1e-05", "1e-04", "1e-03", "1e-02", "1e-01"})
+        {
+          const double f = std::stod(name);
+          if (f * ns.size() >= 1.0 && f <= own_fppw)
+            row[std::string("miss_at_fppw_") + name] = missRateAtFppw(ps, ns, f);
+        }
+        // Full images: the composites the detector was tested on, OpenCV's defaults, same window range.
+        const auto t0 = std::chrono::steady_clock::now();
+        std::vector<ScoredBox> found;
+        int fp = 0;
+        for (size_t i = 0; i < composite_images.size(); ++i)
+          for (const auto& [box, score] : cascadeDetect(peer, composite_images[i], 42, 200))
+          {
+            found.push_back({static_cast<int>(i), box, score});
+            bool hit = false;
+            for (const auto& t : composite_truth[i])
+              hit |= intersectionOverUnion(box, t) >= 0.5;
+            fp += !hit;
+          }
+        const double ms_per_image = 1e3 * secondsSince(t0) / std::max<size_t>(1, composite_images.size());
+        const AveragePrecision ap = averagePrecision(found, composite_truth, 0.5);
+        row["composites_average_precision_iou_0.5"] = ap.ap;
+        row["composites_recall"] = ap.max_recall;
+        row["composites_false_positives_per_image"] = static_cast<double>(fp) /
+                                                      std::max<size_t>(1, composite_images.size());
+        row["composites_ms_per_image"] = ms_per_image;
+        cascade_rows[peer.name] = row;
+        std::cerr << "detector_eval: cascade " << peer.name << ": own point FPPW " << own_fppw << " miss " << own_miss
+                  << "; composites AP " << ap.ap << ", " << secondsSince(start) << " s\n";
+      }
+      if (!cascades.empty())
+      {
+        doc["cascades"] = cascade_rows;
+        doc["cascades_protocol"] = {
+            {"protocol",
+             "OpenCV's pretrained cascades (opencv-data), not retrained: patches = the like-for-like held-out crops "
+             "and 100000 random held-out scene patches, each resized to 4/3 of the cascade's window, score = the best "
+             "of its windows inside the patch with side >= 3/4 of it (IoU >= 0.56; a window scores the last stage's "
+             "sum when every stage passes; OpenCV gives no score to a "
+             "window an earlier stage rejects, so miss rates exist only at FPPW up to the cascade's own "
+             "operating point; null = not reachable). Composites: detectMultiScale(scale 1.1, 3 neighbours, "
+             "42-200 px) on the same composites as full_image, AP at IoU 0.5 ranked by the last stage's sum"}};
+      }
       doc["like_for_like_protocol"] = {
           {"protocol",
            "same training patches (train part + mirrors, 10000 random training-scene "

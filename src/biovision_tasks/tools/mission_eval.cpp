@@ -13,7 +13,7 @@
 
 #include "biovision_common/atomic_file.hpp"
 #include "biovision_common/tool_options.hpp"
-#include "biovision_monitor/path_plot.hpp"
+#include "biovision_common/path_plot.hpp"
 #include "biovision_monitor/run_report.hpp"
 #include "mission_trial.hpp"
 
@@ -25,13 +25,13 @@ namespace
 // (ring), the new obstacles and the collisions. Returns the file name.
 std::string writeTrialPicture(const std::string& dir, const MissionTrialResult& r)
 {
-  biovision_monitor::GridView grid;
+  biovision_common::GridView grid;
   grid.width = r.ltm.cells().cols;
   grid.height = r.ltm.cells().rows;
   grid.resolution = r.ltm.cellSize();
   grid.data.assign(r.ltm.cells().begin(), r.ltm.cells().end());
   const cv::Scalar kHome(180, 0, 180), kTarget(0, 0, 210), kObstacle(200, 120, 0), kCollision(0, 140, 255);
-  std::vector<biovision_monitor::PathPlot::Mark> marks;
+  std::vector<biovision_common::PathPlot::Mark> marks;
   for (const auto& p : r.new_obstacle_positions)
     marks.push_back({p, "new", kObstacle, true});
   for (const auto& p : r.collision_positions)
@@ -42,8 +42,8 @@ std::string writeTrialPicture(const std::string& dir, const MissionTrialResult& 
   std::ostringstream title;
   title << "seed " << r.seed << ": " << (r.completed ? "completed" : "NOT completed") << ", " << r.collisions
         << " collisions, " << static_cast<int>(r.path_length * 10) / 10.0 << " m";
-  const cv::Mat image = biovision_monitor::PathPlot().render(grid, {r.ltm.originX(), r.ltm.originY()}, r.path, marks,
-                                                             title.str(), cv::Size(640, 520));
+  const cv::Mat image = biovision_common::PathPlot().render(grid, {r.ltm.originX(), r.ltm.originY()}, r.path, marks,
+                                                            title.str(), cv::Size(640, 520));
   const std::string name = "trial_" + std::to_string(r.seed) + ".png";
   std::vector<uchar> png;
   cv::imencode(".png", image, png);

@@ -17,6 +17,7 @@
 #include "biovision_attractor/head_attractor_parameters.hpp"
 #include "biovision_common/atomic_file.hpp"
 #include "biovision_common/path_plot.hpp"
+#include "biovision_common/picture_page.hpp"
 #include "biovision_common/tool_options.hpp"
 #include "biovision_sim/floor_plan.hpp"
 #include "biovision_sim/room_world_generator.hpp"
@@ -139,8 +140,8 @@ int main(int argc, char** argv)
   options.app().add_option("--set", settings, "a base parameter NAME=VALUE (repeatable), e.g. alpha_obstacle=8");
   options.app().add_option("--json", json_path, "write the figures here");
   options.app().add_option("--plots", plots_dir,
-                           "write each trial's path over the room's floor plan here (trial_<seed>_<mode>.png; the "
-                           "folder is created)");
+                           "write each trial's path over the room's floor plan here (trial_<seed>_<mode>.png) and "
+                           "report.html showing them with the overall figures (the folder is created)");
   options.parse(argc, argv);
 
   BaseAttractorParameters base;
@@ -183,6 +184,7 @@ int main(int argc, char** argv)
   nlohmann::ordered_json document, scenes = nlohmann::ordered_json::array();
   document["command"] = "rosrun biovision_attractor navigation_eval " + options.command();
   std::vector<Summary> summaries(modes.size());
+  std::vector<std::string> pictures;
   for (int k = 0; k < trials; ++k)
   {
     const unsigned seed = first_seed + k;
@@ -210,7 +212,10 @@ int main(int argc, char** argv)
       j["trapped_events"] = r.trapped_events;
       j["final_distance_m"] = r.final_distance;
       if (!plots_dir.empty())
+      {
         j["picture"] = writeTrialPicture(plots_dir, room, modes[m].first, r);
+        pictures.push_back(j["picture"]);
+      }
       scene[modes[m].first] = j;
       std::cerr << "navigation_eval: seed " << seed << " " << modes[m].first << ": "
                 << (r.reached ? "reached" : "NOT reached") << " in " << r.time << " s, path ratio "
@@ -251,5 +256,15 @@ int main(int argc, char** argv)
   document["scenes"] = scenes;
   if (!json_path.empty())
     biovision_common::writeJsonFile(json_path, document);
+  if (!plots_dir.empty())
+  {
+    nlohmann::ordered_json overall;
+    for (const auto& mode : modes)
+      overall[mode.first] = document[mode.first];
+    biovision_common::PicturePage::write(plots_dir,
+                                         "navigation_eval: split " + split + ", seeds " +
+                                             document["seeds"].get<std::string>() + " (stm " + stm + ")",
+                                         overall.dump(2), pictures);
+  }
   return 0;
 }

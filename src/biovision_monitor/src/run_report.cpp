@@ -13,6 +13,7 @@
 #include "biovision_common/atomic_file.hpp"
 #include "biovision_monitor/drawing.hpp"
 #include "biovision_common/path_plot.hpp"
+#include "biovision_common/picture_page.hpp"
 #include "biovision_monitor/time_series_plot.hpp"
 
 namespace biovision_monitor
@@ -177,19 +178,7 @@ cv::Mat ratesChart(const nlohmann::json& report)
 
 std::string RunReport::base64(const std::vector<unsigned char>& bytes)
 {
-  static const char* kTable = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((bytes.size() + 2) / 3 * 4);
-  for (size_t i = 0; i < bytes.size(); i += 3)
-  {
-    const unsigned v = unsigned(bytes[i]) << 16 | (i + 1 < bytes.size() ? unsigned(bytes[i + 1]) << 8 : 0u) |
-                       (i + 2 < bytes.size() ? unsigned(bytes[i + 2]) : 0u);
-    out += kTable[(v >> 18) & 63];
-    out += kTable[(v >> 12) & 63];
-    out += i + 1 < bytes.size() ? kTable[(v >> 6) & 63] : '=';
-    out += i + 2 < bytes.size() ? kTable[v & 63] : '=';
-  }
-  return out;
+  return biovision_common::PicturePage::base64(bytes);
 }
 
 std::vector<std::string> RunReport::write() const

@@ -5,7 +5,7 @@
 # as CI would catch it. Uncommitted changes are therefore not linted: commit first.
 #  1. catkin_lint -W1 --strict over the clone's src/.
 #  2. ROS-free cores (DESIGN §2): no core library of an algorithm package, devel/lib/lib<pkg>.so or
-#     lib<pkg>_<name>.so (not the *_nodelet or *_ros wrappers), may have a NEEDED entry for libroscpp,
+#     lib<pkg>_<name>.so (not the *_nodelet or *_ros wrappers, nor *_rviz plugins), may have a NEEDED entry for libroscpp,
 #     librosconsole, libcv_bridge or libnodelet (readelf -d), nor name one on its link line
 #     (build/<pkg>/CMakeFiles/<lib>.dir/link.txt). Both, because this machine's gcc links with
 #     --as-needed by default: a core that links ${catkin_LIBRARIES} without calling ROS gets no NEEDED
@@ -43,7 +43,7 @@ for xml in src/*/package.xml; do
   pkg=$(sed -n 's:.*<name>\(.*\)</name>.*:\1:p' "$xml" | head -n 1)
   [[ " $ROS_PACKAGES " == *" $pkg "* ]] && continue
   for lib in devel/lib/lib"$pkg".so devel/lib/lib"$pkg"_*.so; do
-    [[ -f "$lib" && "$lib" != *_nodelet.so && "$lib" != *_ros.so ]] || continue  # ROS wrappers
+    [[ -f "$lib" && "$lib" != *_nodelet.so && "$lib" != *_ros.so && "$lib" != *_rviz.so ]] || continue  # ROS wrappers, rviz plugins
     checked=$((checked + 1))
     needed=$(readelf -d "$lib" | sed -n 's/.*(NEEDED).*\[\(.*\)\]/\1/p' | grep -E "^$FORBIDDEN" | tr '\n' ' ')
     target=$(basename "$lib" .so)

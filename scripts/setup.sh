@@ -26,6 +26,8 @@ PACKAGES=(
   librosbag-dev liburdf-dev ros-robot-state-publisher
   # image pipeline peers and viewers
   ros-stereo-image-proc ros-image-proc rviz xvfb xauth
+  # biovision_monitor's rviz panel plugin (DisplayStatus: each display's status on a topic); Qt 5 comes with it
+  librviz-dev
   # real images for the demo that need no ../shared (/usr/share/doc/opencv-doc/examples/data); also the
   # descriptor's held-out evaluation material (graf1/graf3 + H1to3p, never trained on)
   opencv-doc

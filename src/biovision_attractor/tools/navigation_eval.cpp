@@ -3,6 +3,7 @@
 // and fixed straight ahead; per trial and overall: reached, time, path ratio, minimum clearance,
 // collisions, watchdog stops (issue 16). No ROS: the loop of navigation_trial.cpp.
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -10,9 +11,13 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "biovision_attractor/base_attractor_parameters.hpp"
 #include "biovision_attractor/head_attractor_parameters.hpp"
+#include "biovision_common/atomic_file.hpp"
+#include "biovision_common/path_plot.hpp"
+#include "biovision_common/picture_page.hpp"
 #include "biovision_common/tool_options.hpp"
 #include "biovision_sim/floor_plan.hpp"
 #include "biovision_sim/room_world_generator.hpp"
@@ -28,6 +33,44 @@ constexpr const char* kDescription =
     "goal >= 4 m apart) in biovision_sim's drive model, once with the active head (look_ahead) and once with the "
     "head fixed ahead, and reports reached (within 0.3 m), time, path length / straight line, minimum clearance, "
     "collisions and watchdog stops. The STM is ground truth (FloorPlan ranges in the camera's view), not vision.";
+
+// <dir>/trial_<seed>_<mode>.png: the path driven over the room's floor plan (footprints black, rasterised
+// at 5 cm), start (green disc) and end (red disc) of the path, the goal (a ring: green when reached, red when
+// not) and the collisions (orange rings). Returns the file name.
+std::string writeTrialPicture(const std::string& dir, const biovision_sim::RoomWorldGenerator::Room& room,
+                              const std::string& mode, const NavigationTrialResult& r)
+{
+  const biovision_sim::FloorPlan plan(room.world);
+  constexpr double kCell = 0.05;
+  const double x0 = -0.5, y0 = -room.depth / 2 - 0.5;
+  const int cols = static_cast<int>(std::ceil((room.width + 1.0) / kCell));
+  const int rows = static_cast<int>(std::ceil((room.depth + 1.0) / kCell));
+  const cv::Mat1b raster = plan.rasterize(x0, y0, kCell, rows, cols);
+  biovision_common::GridView grid;
+  grid.width = cols;
+  grid.height = rows;
+  grid.resolution = kCell;
+  grid.data.resize(static_cast<size_t>(rows) * cols);
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c)
+      grid.data[static_cast<size_t>(r) * cols + c] = raster(r, c) ? 100 : 0;
+  std::vector<biovision_common::PathPlot::Mark> marks;
+  for (const auto& p : r.collisions_at)
+    marks.push_back({p, "hit", cv::Scalar(0, 140, 255), false});
+  marks.push_back(
+      {{room.goal_x, room.goal_y}, "goal", r.reached ? cv::Scalar(0, 150, 0) : cv::Scalar(0, 0, 210), false});
+  std::ostringstream title;
+  title << "seed " << room.seed << " " << mode << ": " << (r.reached ? "reached" : "NOT reached") << " in "
+        << static_cast<int>(r.time) << " s, path ratio "
+        << static_cast<int>(100 * r.path_length / r.straight_line) / 100.0 << ", " << r.collisions << " collisions";
+  const cv::Mat image = biovision_common::PathPlot().render(grid, {x0, y0}, r.path, marks, title.str(),
+                                                            cv::Size(640, 520));
+  const std::string name = "trial_" + std::to_string(room.seed) + "_" + mode + ".png";
+  std::vector<uchar> png;
+  cv::imencode(".png", image, png);
+  biovision_common::writeFileAtomically(dir + "/" + name, png.data(), png.size());
+  return name;
+}
 
 struct Summary
 {
@@ -77,7 +120,7 @@ int main(int argc, char** argv)
   biovision_common::ToolOptions options("navigation_eval", kDescription);
   unsigned first_seed = 1;
   int trials = 20;
-  std::string json_path, stm = "ground_truth_range", heads = "both", split = "report";
+  std::string json_path, plots_dir, stm = "ground_truth_range", heads = "both", split = "report";
   std::vector<std::string> settings;
   NavigationTrialOptions trial;
   options.app().add_option("--first-seed", first_seed, "seed of the first world; trial k uses first_seed + k");
@@ -96,6 +139,9 @@ int main(int argc, char** argv)
   options.app().add_option("--timeout", trial.timeout, "[s] per trial")->check(biovision_common::kPositive);
   options.app().add_option("--set", settings, "a base parameter NAME=VALUE (repeatable), e.g. alpha_obstacle=8");
   options.app().add_option("--json", json_path, "write the figures here");
+  options.app().add_option("--plots", plots_dir,
+                           "write each trial's path over the room's floor plan here (trial_<seed>_<mode>.png) and "
+                           "report.html showing them with the overall figures (the folder is created)");
   options.parse(argc, argv);
 
   BaseAttractorParameters base;
@@ -124,6 +170,8 @@ int main(int argc, char** argv)
     std::cerr << "navigation_eval: " << e.what() << "\n";
     return 2;
   }
+  if (!plots_dir.empty())
+    std::filesystem::create_directories(plots_dir);
   const HeadAttractorParameters head;
   const biovision_sim::RoomWorldGenerator generator;
 
@@ -136,6 +184,7 @@ int main(int argc, char** argv)
   nlohmann::ordered_json document, scenes = nlohmann::ordered_json::array();
   document["command"] = "rosrun biovision_attractor navigation_eval " + options.command();
   std::vector<Summary> summaries(modes.size());
+  std::vector<std::string> pictures;
   for (int k = 0; k < trials; ++k)
   {
     const unsigned seed = first_seed + k;
@@ -162,6 +211,11 @@ int main(int argc, char** argv)
       j["watchdog_stops"] = r.watchdog_stops;
       j["trapped_events"] = r.trapped_events;
       j["final_distance_m"] = r.final_distance;
+      if (!plots_dir.empty())
+      {
+        j["picture"] = writeTrialPicture(plots_dir, room, modes[m].first, r);
+        pictures.push_back(j["picture"]);
+      }
       scene[modes[m].first] = j;
       std::cerr << "navigation_eval: seed " << seed << " " << modes[m].first << ": "
                 << (r.reached ? "reached" : "NOT reached") << " in " << r.time << " s, path ratio "
@@ -202,5 +256,15 @@ int main(int argc, char** argv)
   document["scenes"] = scenes;
   if (!json_path.empty())
     biovision_common::writeJsonFile(json_path, document);
+  if (!plots_dir.empty())
+  {
+    nlohmann::ordered_json overall;
+    for (const auto& mode : modes)
+      overall[mode.first] = document[mode.first];
+    biovision_common::PicturePage::write(plots_dir,
+                                         "navigation_eval: split " + split + ", seeds " +
+                                             document["seeds"].get<std::string>() + " (stm " + stm + ")",
+                                         overall.dump(2), pictures);
+  }
   return 0;
 }

@@ -67,6 +67,7 @@ NavigationTrialResult runNavigationTrial(const biovision_sim::World& world, doub
   NavigationTrialResult result;
   result.straight_line = std::hypot(goal_x - start_x, goal_y - start_y);
   result.min_clearance = plan.clearance(start_x, start_y) - limits.radius;
+  result.path.emplace_back(start_x, start_y);
   const double physics_dt = 1.0 / options.physics_rate;
   const int control_every = std::max(1, static_cast<int>(std::lround(options.physics_rate / options.control_rate)));
   const int stm_every = std::max(1, static_cast<int>(std::lround(options.physics_rate / options.stm_rate)));
@@ -136,13 +137,18 @@ NavigationTrialResult runNavigationTrial(const biovision_sim::World& world, doub
       }
       pan_sum += std::abs(pan_servo.position());
       ++pan_count;
+      if (step > 0)
+        result.path.emplace_back(x, y);
     }
     pan_servo.step(physics_dt);
     // A collision is a contact after the base had been clear (2 cm) since the last one: pushing on against
     // the same obstacle is one collision, not one per physics step.
     const bool hit = drive.step(physics_dt, world);
     if (hit && !in_contact)
+    {
       ++result.collisions;
+      result.collisions_at.emplace_back(drive.x(), drive.y());
+    }
     if (hit)
       in_contact = true;
     else if (plan.clearance(drive.x(), drive.y()) - limits.radius > 0.02)
@@ -152,6 +158,7 @@ NavigationTrialResult runNavigationTrial(const biovision_sim::World& world, doub
     result.time = t;
   }
   result.final_distance = std::hypot(goal_x - drive.x(), goal_y - drive.y());
+  result.path.emplace_back(drive.x(), drive.y());
   result.mean_pan_abs = pan_count > 0 ? pan_sum / pan_count : 0.0;
   return result;
 }

@@ -3,6 +3,9 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
 
 #include "biovision_attractor/base_attractor_parameters.hpp"
 #include "biovision_attractor/head_attractor_parameters.hpp"
@@ -36,15 +39,17 @@ struct NavigationTrialOptions
 struct NavigationTrialResult
 {
   bool reached = false;
-  double time = 0.0;            ///< [s] until stopped at the goal (or the timeout)
-  double path_length = 0.0;     ///< [m]
-  double straight_line = 0.0;   ///< [m] start to goal
-  double min_clearance = 0.0;   ///< [m] smallest gap between the base's disc and any footprint
-  int collisions = 0;           ///< contacts the drive reported (each stops the base)
-  int watchdog_stops = 0;       ///< control steps the watchdog zeroed the command
-  int trapped_events = 0;       ///< times the controller reported itself trapped
-  double final_distance = 0.0;  ///< [m] to the goal at the end
-  double mean_pan_abs = 0.0;    ///< [rad] mean |head pan| (0 for a fixed head)
+  double time = 0.0;                       ///< [s] until stopped at the goal (or the timeout)
+  double path_length = 0.0;                ///< [m]
+  double straight_line = 0.0;              ///< [m] start to goal
+  double min_clearance = 0.0;              ///< [m] smallest gap between the base's disc and any footprint
+  int collisions = 0;                      ///< contacts the drive reported (each stops the base)
+  int watchdog_stops = 0;                  ///< control steps the watchdog zeroed the command
+  int trapped_events = 0;                  ///< times the controller reported itself trapped
+  double final_distance = 0.0;             ///< [m] to the goal at the end
+  double mean_pan_abs = 0.0;               ///< [rad] mean |head pan| (0 for a fixed head)
+  std::vector<cv::Point2d> path;           ///< [m] world frame: the start, then the base at every control step
+  std::vector<cv::Point2d> collisions_at;  ///< [m] world frame: where each counted collision happened
 };
 
 /// Runs a trial from (start_x, start_y, start_yaw) to (goal_x, goal_y) in `world`. make_stm builds the STM

@@ -12,7 +12,8 @@
 
 #include "biovision_common/atomic_file.hpp"
 #include "biovision_monitor/drawing.hpp"
-#include "biovision_monitor/path_plot.hpp"
+#include "biovision_common/path_plot.hpp"
+#include "biovision_common/picture_page.hpp"
 #include "biovision_monitor/time_series_plot.hpp"
 
 namespace biovision_monitor
@@ -115,7 +116,7 @@ cv::Mat pathPicture(const std::string& dir, const nlohmann::json& mission)
   std::vector<cv::Point2d> path;
   for (const auto& r : readCsv(dir + "path.csv", "t,x,y"))
     path.emplace_back(r[1], r[2]);
-  GridView grid;
+  biovision_common::GridView grid;
   cv::Point2d origin(0, 0);
   if (mission.contains("ltm_map"))
   {
@@ -131,7 +132,7 @@ cv::Mat pathPicture(const std::string& dir, const nlohmann::json& mission)
     grid.data.assign(pgm.datastart, pgm.dataend);  // uchar -> signed char: 255 = -1 = unknown
   }
   const cv::Scalar kHome(180, 0, 180), kTarget(0, 0, 210), kObstacle(200, 120, 0), kObject(60, 60, 60);
-  std::vector<PathPlot::Mark> marks;
+  std::vector<biovision_common::PathPlot::Mark> marks;
   for (const auto& o : mission.value("ltm_objects", nlohmann::json::array()))
     marks.push_back({{o.value("x", NAN), o.value("y", NAN)}, o.value("label", std::string()), kObject, false});
   if (mission.contains("new_obstacle") && mission["new_obstacle"].is_object() && mission["new_obstacle"].contains("x"))
@@ -143,8 +144,8 @@ cv::Mat pathPicture(const std::string& dir, const nlohmann::json& mission)
   marks.push_back({point(mission.value("target_truth", nlohmann::json())), target, kTarget, true});
   marks.push_back({point(mission.value("target_remembered", nlohmann::json())), "", kTarget, false});
   marks.push_back({point(mission.value("home", nlohmann::json())), "home", kHome, true});
-  return PathPlot().render(grid, origin, path, marks, "path driven over the long-term memory (map frame)",
-                           cv::Size(720, 560));
+  return biovision_common::PathPlot().render(grid, origin, path, marks,
+                                             "path driven over the long-term memory (map frame)", cv::Size(720, 560));
 }
 
 cv::Mat ratesChart(const nlohmann::json& report)
@@ -177,19 +178,7 @@ cv::Mat ratesChart(const nlohmann::json& report)
 
 std::string RunReport::base64(const std::vector<unsigned char>& bytes)
 {
-  static const char* kTable = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((bytes.size() + 2) / 3 * 4);
-  for (size_t i = 0; i < bytes.size(); i += 3)
-  {
-    const unsigned v = unsigned(bytes[i]) << 16 | (i + 1 < bytes.size() ? unsigned(bytes[i + 1]) << 8 : 0u) |
-                       (i + 2 < bytes.size() ? unsigned(bytes[i + 2]) : 0u);
-    out += kTable[(v >> 18) & 63];
-    out += kTable[(v >> 12) & 63];
-    out += i + 1 < bytes.size() ? kTable[(v >> 6) & 63] : '=';
-    out += i + 2 < bytes.size() ? kTable[v & 63] : '=';
-  }
-  return out;
+  return biovision_common::PicturePage::base64(bytes);
 }
 
 std::vector<std::string> RunReport::write() const

@@ -17,7 +17,6 @@
 #include "biovision_monitor/monitor_parameters.hpp"
 #include "biovision_monitor/object_plot.hpp"
 #include "biovision_monitor/occupancy_grid_plot.hpp"
-#include "biovision_monitor/path_plot.hpp"
 #include "biovision_monitor/run_report.hpp"
 #include "biovision_monitor/saliency_plot.hpp"
 #include "biovision_monitor/time_series_plot.hpp"
@@ -231,38 +230,6 @@ TEST(OccupancyGridPlot, RowZeroIsAtTheBottomAndValuesAreGreyLevels)
   EXPECT_EQ(image.at<uchar>(1, 1), 255);
   g.data.pop_back();
   EXPECT_THROW(OccupancyGridPlot::toImage(g), std::invalid_argument);
-}
-
-TEST(PathPlot, PathMarksAndMapShareOneMetricFrame)
-{
-  // A 4 x 2 m map with one occupied cell at map (3.05, 1.05); the path from (0.5, 0.5) to (3.5, 0.5).
-  GridView g;
-  g.width = 40;
-  g.height = 20;
-  g.resolution = 0.1;
-  g.data.assign(800, 0);
-  g.data[10 * 40 + 30] = 100;
-  const cv::Point2d origin(0.0, 0.0);
-  const PathPlot::Mark home{{0.5, 0.5}, "home", cv::Scalar(255, 0, 255)};
-  const cv::Mat image = PathPlot().render(g, origin, {{0.5, 0.5}, {2.0, 0.5}, {3.5, 0.5}}, {home}, "path",
-                                          cv::Size(520, 324));
-  ASSERT_EQ(image.size(), cv::Size(520, 324));
-  // 5 x 3 m with the margin into 520 x 300 px below the title: 100 px per metre, x0 = -0.5, y1 = 2.5.
-  auto px = [](double x, double y) {
-    return cv::Point(int(std::lround(10 + (x + 0.5) * 100)), int(std::lround(24 + (2.5 - y) * 100)));
-  };
-  EXPECT_EQ(image.at<cv::Vec3b>(px(3.05, 1.05)), cv::Vec3b(0, 0, 0));        // the occupied cell
-  EXPECT_EQ(image.at<cv::Vec3b>(px(1.05, 1.55)), cv::Vec3b(255, 255, 255));  // free cells
-  EXPECT_EQ(image.at<cv::Vec3b>(px(2.0, 0.5)), cv::Vec3b(200, 80, 0));       // on the path
-  EXPECT_EQ(image.at<cv::Vec3b>(px(3.5, 0.5)), cv::Vec3b(0, 0, 210));        // its end
-  EXPECT_EQ(image.at<cv::Vec3b>(px(0.5, 0.5)), cv::Vec3b(255, 0, 255));      // home drawn over the start
-  // Nothing at all still gives a titled tile; bad grids throw.
-  EXPECT_EQ(PathPlot().render(GridView(), {}, {}, {}, "empty", cv::Size(100, 100)).size(), cv::Size(100, 100));
-  g.data.pop_back();
-  EXPECT_THROW(PathPlot().render(g, origin, {}, {}, "bad", cv::Size(100, 100)), std::invalid_argument);
-  g.data.push_back(0);
-  g.resolution = 0;
-  EXPECT_THROW(PathPlot().render(g, origin, {}, {}, "bad", cv::Size(100, 100)), std::invalid_argument);
 }
 
 TEST(MonitorPanel, EightTilesInTheThesisOrderAndNoDataTilesNameTheirTopic)

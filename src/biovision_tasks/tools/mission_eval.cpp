@@ -13,8 +13,8 @@
 
 #include "biovision_common/atomic_file.hpp"
 #include "biovision_common/tool_options.hpp"
-#include "biovision_monitor/path_plot.hpp"
-#include "biovision_monitor/run_report.hpp"
+#include "biovision_common/path_plot.hpp"
+#include "biovision_common/picture_page.hpp"
 #include "mission_trial.hpp"
 
 using namespace biovision_tasks;
@@ -25,13 +25,13 @@ namespace
 // (ring), the new obstacles and the collisions. Returns the file name.
 std::string writeTrialPicture(const std::string& dir, const MissionTrialResult& r)
 {
-  biovision_monitor::GridView grid;
+  biovision_common::GridView grid;
   grid.width = r.ltm.cells().cols;
   grid.height = r.ltm.cells().rows;
   grid.resolution = r.ltm.cellSize();
   grid.data.assign(r.ltm.cells().begin(), r.ltm.cells().end());
   const cv::Scalar kHome(180, 0, 180), kTarget(0, 0, 210), kObstacle(200, 120, 0), kCollision(0, 140, 255);
-  std::vector<biovision_monitor::PathPlot::Mark> marks;
+  std::vector<biovision_common::PathPlot::Mark> marks;
   for (const auto& p : r.new_obstacle_positions)
     marks.push_back({p, "new", kObstacle, true});
   for (const auto& p : r.collision_positions)
@@ -42,8 +42,8 @@ std::string writeTrialPicture(const std::string& dir, const MissionTrialResult& 
   std::ostringstream title;
   title << "seed " << r.seed << ": " << (r.completed ? "completed" : "NOT completed") << ", " << r.collisions
         << " collisions, " << static_cast<int>(r.path_length * 10) / 10.0 << " m";
-  const cv::Mat image = biovision_monitor::PathPlot().render(grid, {r.ltm.originX(), r.ltm.originY()}, r.path, marks,
-                                                             title.str(), cv::Size(640, 520));
+  const cv::Mat image = biovision_common::PathPlot().render(grid, {r.ltm.originX(), r.ltm.originY()}, r.path, marks,
+                                                            title.str(), cv::Size(640, 520));
   const std::string name = "trial_" + std::to_string(r.seed) + ".png";
   std::vector<uchar> png;
   cv::imencode(".png", image, png);
@@ -51,26 +51,6 @@ std::string writeTrialPicture(const std::string& dir, const MissionTrialResult& 
   return name;
 }
 
-// report.html: the overall figures and every trial's picture, self-contained.
-void writeReportPage(const std::string& dir, const nlohmann::ordered_json& document,
-                     const std::vector<std::string>& pictures)
-{
-  std::ostringstream page;
-  page << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>mission_eval</title>"
-          "<style>body{font-family:sans-serif;margin:1em}img{width:48%;border:1px solid #ccc;margin:2px}</style>"
-          "</head><body>\n<h1>mission_eval: find and return, split "
-       << document.value("split", std::string()) << ", seeds " << document.value("seeds", std::string())
-       << "</h1>\n<pre>" << document["overall"].dump(2) << "</pre>\n";
-  for (const auto& name : pictures)
-  {
-    std::ifstream f(dir + "/" + name, std::ios::binary);
-    const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-    page << "<img alt=\"" << name << "\" src=\"data:image/png;base64," << biovision_monitor::RunReport::base64(bytes)
-         << "\">\n";
-  }
-  page << "</body></html>\n";
-  biovision_common::writeFileAtomically(dir + "/report.html", page.str());
-}
 }  // namespace
 
 int main(int argc, char** argv)
@@ -221,6 +201,10 @@ int main(int argc, char** argv)
   if (!json_path.empty())
     biovision_common::writeJsonFile(json_path, document);
   if (!plots_dir.empty())
-    writeReportPage(plots_dir, document, pictures);
+    biovision_common::PicturePage::write(plots_dir,
+                                         "mission_eval: find and return, split " +
+                                             document.value("split", std::string()) + ", seeds " +
+                                             document.value("seeds", std::string()),
+                                         document["overall"].dump(2), pictures);
   return 0;
 }

@@ -160,6 +160,7 @@ void MemoryNodelet::onInitNodelet()
   stm_markers_pub_ = advertise<visualization_msgs::MarkerArray>(nh, "memory/stm_markers", 2);
   ltm_pub_ = advertise<nav_msgs::OccupancyGrid>(nh, "memory/ltm", 1, true);
   items_pub_ = advertise<biovision_msgs::LtmItemArray>(nh, "memory/ltm_items", 1, true);
+  ltm_markers_pub_ = advertise<visualization_msgs::MarkerArray>(nh, "memory/ltm_markers", 1, true);
   list_srv_ = nh.advertiseService("memory/list_objects", &MemoryNodelet::onList, this);
   query_srv_ = nh.advertiseService("memory/query_object", &MemoryNodelet::onQuery, this);
   forget_srv_ = nh.advertiseService("memory/forget_object", &MemoryNodelet::onForget, this);
@@ -546,6 +547,46 @@ void MemoryNodelet::publishLtm(const ros::Time& stamp)
   grid.info.map_load_time = stamp;
   ltm_pub_.publish(grid);
   items_pub_.publish(items);
+  if (ltm_markers_pub_.getNumSubscribers() == 0)
+    return;
+  // The remembered objects for rviz (DESIGN §3's "+ MarkerArray" beside memory/ltm): a DELETEALL first, so
+  // forgotten objects disappear, then per object a sphere (green = landmark, fixed at M_R; orange = object)
+  // with alpha = strength and its label above it.
+  visualization_msgs::MarkerArray markers;
+  visualization_msgs::Marker clear;
+  clear.header = grid.header;
+  clear.action = visualization_msgs::Marker::DELETEALL;
+  markers.markers.push_back(clear);
+  int id = 0;
+  for (const auto& item : items.items)
+  {
+    if (item.kind != "object" && item.kind != "landmark")
+      continue;
+    visualization_msgs::Marker sphere;
+    sphere.header = grid.header;
+    sphere.ns = "ltm_objects";
+    sphere.id = id++;
+    sphere.type = visualization_msgs::Marker::SPHERE;
+    sphere.pose.position = item.position;
+    sphere.pose.orientation.w = 1.0;
+    sphere.scale.x = sphere.scale.y = sphere.scale.z = 2.0 * item.radius;
+    const bool landmark = item.kind == "landmark";
+    sphere.color.r = landmark ? 0.1f : 1.0f;
+    sphere.color.g = landmark ? 0.8f : 0.5f;
+    sphere.color.b = 0.1f;
+    sphere.color.a = 0.3f + 0.7f * std::clamp(item.strength, 0.0f, 1.0f);
+    visualization_msgs::Marker text = sphere;
+    text.ns = "ltm_labels";
+    text.type = visualization_msgs::Marker::TEXT_VIEW_FACING;
+    text.pose.position.z += 0.25;
+    text.scale.x = text.scale.y = 0.0;
+    text.scale.z = 0.15;
+    text.color.r = text.color.g = text.color.b = text.color.a = 1.0f;
+    text.text = item.label + (landmark ? " (landmark)" : "");
+    markers.markers.push_back(sphere);
+    markers.markers.push_back(text);
+  }
+  ltm_markers_pub_.publish(markers);
 }
 
 biovision_msgs::LtmItem MemoryNodelet::objectItem(const std::string& label, const ObjectMemory::Object& o,

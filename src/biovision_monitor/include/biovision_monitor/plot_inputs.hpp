@@ -7,6 +7,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "biovision_common/grid_view.hpp"
+
 /// What the plots draw, as plain data: the ROS-free mirror of the messages the monitor reads (the nodelets
 /// fill these from biovision_msgs / nav_msgs / stereo_msgs; tests fill them by hand).
 namespace biovision_monitor
@@ -52,11 +54,6 @@ struct ObjectView
   cv::Rect box;
 };
 
-/// nav_msgs/OccupancyGrid: row-major, row 0 at the origin (the map's -y side), values -1 (unknown) or 0..100.
-struct GridView
-{
-  int width = 0, height = 0;
-  double resolution = 0.0;  ///< [m/cell]
-  std::vector<signed char> data;
-};
+/// An occupancy grid without ROS (biovision_common's, shared with PathPlot).
+using GridView = biovision_common::GridView;
 }  // namespace biovision_monitor

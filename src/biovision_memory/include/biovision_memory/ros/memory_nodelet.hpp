@@ -104,7 +104,7 @@ private:
   std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
   std::unique_ptr<tf2_ros::TransformBroadcaster> tf_broadcaster_;
   ros::Subscriber disparity_sub_, info_sub_, objects_sub_;
-  ros::Publisher stm_pub_, stm_markers_pub_, ltm_pub_, items_pub_;
+  ros::Publisher stm_pub_, stm_markers_pub_, ltm_pub_, items_pub_, ltm_markers_pub_;
   ros::ServiceServer list_srv_, query_srv_, forget_srv_;
   ros::WallTimer timer_;
   ros::Timer map_to_odom_timer_;

@@ -1,4 +1,4 @@
-#include "biovision_monitor/path_plot.hpp"
+#include "biovision_common/path_plot.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,11 +6,24 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "biovision_monitor/drawing.hpp"
-#include "biovision_monitor/occupancy_grid_plot.hpp"
-
-namespace biovision_monitor
+namespace biovision_common
 {
+const cv::Scalar PathPlot::kPathColour(200, 80, 0), PathPlot::kStartColour(0, 150, 0), PathPlot::kEndColour(0, 0, 210);
+
+namespace
+{
+const cv::Scalar kBackground(255, 255, 255), kAxis(0, 0, 0), kTitle(255, 255, 255);
+
+// The title on a dark strip across the top (biovision_monitor's tile titles look the same).
+void drawTitle(cv::Mat& image, const std::string& text)
+{
+  const int h = std::min(18, image.rows);
+  cv::Mat strip = image(cv::Rect(0, 0, image.cols, h));
+  strip = strip * 0.35;
+  cv::putText(image, text, cv::Point(4, h - 5), cv::FONT_HERSHEY_SIMPLEX, 0.45, kTitle, 1, cv::LINE_AA);
+}
+}  // namespace
+
 cv::Mat PathPlot::render(const GridView& grid, cv::Point2d origin, const std::vector<cv::Point2d>& path,
                          const std::vector<Mark>& marks, const std::string& title, cv::Size size) const
 {
@@ -21,7 +34,7 @@ cv::Mat PathPlot::render(const GridView& grid, cv::Point2d origin, const std::ve
     throw std::invalid_argument("PathPlot: a grid needs a positive resolution");
   cv::Mat map_image;
   if (have_grid)
-    map_image = OccupancyGridPlot::toImage(grid);  // throws for a size mismatch
+    map_image = grid.toImage();  // throws for a size mismatch
 
   // The extent in metres of everything drawn, plus a margin.
   double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
@@ -39,7 +52,7 @@ cv::Mat PathPlot::render(const GridView& grid, cv::Point2d origin, const std::ve
     extend(p);
   for (const auto& m : marks)
     extend(m.position);
-  cv::Mat image(size, CV_8UC3, colours::kBackground);
+  cv::Mat image(size, CV_8UC3, kBackground);
   const int top = 24;  // title strip
   if (!(x1 >= x0))
   {
@@ -74,11 +87,11 @@ cv::Mat PathPlot::render(const GridView& grid, cv::Point2d origin, const std::ve
     if (std::isfinite(p.x) && std::isfinite(p.y))
       line.push_back(px(p));
   if (line.size() >= 2)
-    cv::polylines(image, line, false, colours::kSum, 2, cv::LINE_8);
+    cv::polylines(image, line, false, kPathColour, 2, cv::LINE_8);
   if (!line.empty())
   {
-    cv::circle(image, line.front(), 5, colours::kAttraction, cv::FILLED, cv::LINE_8);
-    cv::circle(image, line.back(), 5, colours::kRepulsion, cv::FILLED, cv::LINE_8);
+    cv::circle(image, line.front(), 5, kStartColour, cv::FILLED, cv::LINE_8);
+    cv::circle(image, line.back(), 5, kEndColour, cv::FILLED, cv::LINE_8);
   }
   for (const auto& m : marks)
   {
@@ -90,9 +103,9 @@ cv::Mat PathPlot::render(const GridView& grid, cv::Point2d origin, const std::ve
   }
   // 1 m scale bar, bottom left.
   const cv::Point bar0(10, size.height - 12), bar1(10 + int(std::lround(scale)), size.height - 12);
-  cv::line(image, bar0, bar1, colours::kAxis, 2);
-  cv::putText(image, "1 m", bar1 + cv::Point(6, 4), cv::FONT_HERSHEY_SIMPLEX, 0.4, colours::kAxis, 1, cv::LINE_AA);
+  cv::line(image, bar0, bar1, kAxis, 2);
+  cv::putText(image, "1 m", bar1 + cv::Point(6, 4), cv::FONT_HERSHEY_SIMPLEX, 0.4, kAxis, 1, cv::LINE_AA);
   drawTitle(image, title);
   return image;
 }
-}  // namespace biovision_monitor
+}  // namespace biovision_common

@@ -1,0 +1,39 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "biovision_common/grid_view.hpp"
+
+namespace biovision_common
+{
+/// The path a base drove, seen from above over a map (thesis Figs. 5.8-5.10: the map built on the way,
+/// the path, home and the objects), for run reports and evaluation tools (biovision_monitor's run_report,
+/// biovision_tasks' mission_eval, biovision_attractor's navigation_eval): map frame, metres, +x right and
+/// +y up, one scale for both axes, a 1 m scale bar. OpenCV only.
+class PathPlot
+{
+public:
+  /// Colours (BGR) of the path (blue), its start (green) and its end (red).
+  static const cv::Scalar kPathColour, kStartColour, kEndColour;
+
+  struct Mark
+  {
+    cv::Point2d position;  ///< [m], map frame
+    std::string label;     ///< drawn beside the mark
+    cv::Scalar colour;     ///< BGR
+    bool filled = true;    ///< a disc, else a ring (e.g. where the memory put an object vs where it is)
+  };
+
+  /// A CV_8UC3 image of `size` on white: the grid (when not empty; cell (0, 0)'s corner at `origin` [m],
+  /// the shades of GridView::toImage) and the path (polyline 2 px, start and end as 5 px discs) and marks
+  /// (6 px discs or rings, labelled), fitted together with a 0.5 m margin below a 24 px title strip. An
+  /// empty grid and path give the marks alone (or a blank titled tile). Throws std::invalid_argument for a
+  /// grid whose data does not match its size, a non-positive resolution of a non-empty grid, or a size
+  /// smaller than 64 x 64 px.
+  cv::Mat render(const GridView& grid, cv::Point2d origin, const std::vector<cv::Point2d>& path,
+                 const std::vector<Mark>& marks, const std::string& title, cv::Size size) const;
+};
+}  // namespace biovision_common

@@ -1,0 +1,86 @@
+// PathPlot and GridView (biovision_common's plots): the map, the path, its start and end and the marks
+// are drawn where their metric positions put them, in one frame.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "biovision_common/path_plot.hpp"
+
+using biovision_common::GridView;
+using biovision_common::PathPlot;
+
+namespace
+{
+cv::Scalar asScalar(const cv::Vec3b& v)
+{
+  return cv::Scalar(v[0], v[1], v[2]);
+}
+}  // namespace
+
+TEST(GridView, RowZeroIsTheImagesBottomAndValuesAreShades)
+{
+  GridView g;
+  g.width = 4;
+  g.height = 3;
+  g.resolution = 0.1;
+  g.data.assign(12, 0);
+  g.data[0] = 100;  // row 0, col 0: the map's bottom-left
+  g.data[11] = -1;
+  const cv::Mat image = g.toImage();
+  EXPECT_EQ(image.at<uchar>(2, 0), 0);
+  EXPECT_EQ(image.at<uchar>(0, 3), 160);
+  EXPECT_EQ(image.at<uchar>(1, 1), 255);
+  g.data.pop_back();
+  EXPECT_THROW(g.toImage(), std::invalid_argument);
+}
+
+TEST(PathPlot, PathStartEndMarksAndMapShareOneMetricFrame)
+{
+  // A 4 x 2 m map with one occupied cell at map (3.05, 1.05); the path from (0.5, 0.5) to (3.5, 0.5); a
+  // goal mark at (3.5, 1.5) and home at the start.
+  GridView g;
+  g.width = 40;
+  g.height = 20;
+  g.resolution = 0.1;
+  g.data.assign(800, 0);
+  g.data[10 * 40 + 30] = 100;
+  const cv::Point2d origin(0.0, 0.0);
+  const PathPlot::Mark goal{{3.5, 1.5}, "goal", cv::Scalar(0, 200, 255)};
+  const std::vector<cv::Point2d> path = {{0.5, 0.5}, {2.0, 0.5}, {3.5, 0.5}};
+  const cv::Mat image = PathPlot().render(g, origin, path, {goal}, "path", cv::Size(520, 324));
+  ASSERT_EQ(image.size(), cv::Size(520, 324));
+  // 5 x 3 m with the margin into 520 x 300 px below the title: 100 px per metre, x0 = -0.5, y1 = 2.5.
+  auto px = [](double x, double y) {
+    return cv::Point(int(std::lround(10 + (x + 0.5) * 100)), int(std::lround(24 + (2.5 - y) * 100)));
+  };
+  EXPECT_EQ(image.at<cv::Vec3b>(px(3.05, 1.05)), cv::Vec3b(0, 0, 0));              // the occupied cell
+  EXPECT_EQ(image.at<cv::Vec3b>(px(1.05, 1.55)), cv::Vec3b(255, 255, 255));        // free cells
+  EXPECT_EQ(asScalar(image.at<cv::Vec3b>(px(2.0, 0.5))), PathPlot::kPathColour);   // on the path
+  EXPECT_EQ(asScalar(image.at<cv::Vec3b>(px(0.5, 0.5))), PathPlot::kStartColour);  // its start
+  EXPECT_EQ(asScalar(image.at<cv::Vec3b>(px(3.5, 0.5))), PathPlot::kEndColour);    // its end
+  EXPECT_EQ(image.at<cv::Vec3b>(px(3.5, 1.5)), cv::Vec3b(0, 200, 255));            // the goal mark
+  // Off the path, the map and the marks: the white background; 1 m above the path's middle: free map.
+  EXPECT_EQ(image.at<cv::Vec3b>(px(-0.3, 2.3)), cv::Vec3b(255, 255, 255));
+  EXPECT_NE(asScalar(image.at<cv::Vec3b>(px(2.0, 1.0))), PathPlot::kPathColour);
+  // A ring (filled = false) leaves its centre as it was; marks are drawn over the path (home at the start).
+  const PathPlot::Mark ring{{2.0, 1.5}, "ring", cv::Scalar(255, 0, 255), false};
+  const PathPlot::Mark home{{0.5, 0.5}, "home", cv::Scalar(255, 0, 255)};
+  const cv::Mat marked = PathPlot().render(g, origin, path, {ring, home}, "path", cv::Size(520, 324));
+  EXPECT_EQ(marked.at<cv::Vec3b>(px(2.0, 1.5)), cv::Vec3b(255, 255, 255));
+  EXPECT_EQ(marked.at<cv::Vec3b>(px(2.0, 1.5) + cv::Point(6, 0)), cv::Vec3b(255, 0, 255));
+  EXPECT_EQ(marked.at<cv::Vec3b>(px(0.5, 0.5)), cv::Vec3b(255, 0, 255));
+  // Nothing at all still gives a titled tile; bad grids and sizes throw.
+  EXPECT_EQ(PathPlot().render(GridView(), {}, {}, {}, "empty", cv::Size(100, 100)).size(), cv::Size(100, 100));
+  EXPECT_THROW(PathPlot().render(GridView(), {}, path, {}, "small", cv::Size(63, 100)), std::invalid_argument);
+  g.data.pop_back();
+  EXPECT_THROW(PathPlot().render(g, origin, {}, {}, "bad", cv::Size(100, 100)), std::invalid_argument);
+  g.data.push_back(0);
+  g.resolution = 0;
+  EXPECT_THROW(PathPlot().render(g, origin, {}, {}, "bad", cv::Size(100, 100)), std::invalid_argument);
+}
+
+int main(int argc, char** argv)
+{
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}

@@ -25,8 +25,16 @@ void PathFollower::blockAhead(const Percept& percept)
 {
   if (!percept.pose_valid)
     return;
-  blocked_points_.emplace_back(percept.pose.x + 0.5 * std::cos(percept.pose.yaw),
-                               percept.pose.y + 0.5 * std::sin(percept.pose.yaw));
+  // Towards the waypoint the base could not make progress to (it may be turned away from it, held between
+  // the goal's attraction and the obstacle's repulsion); the heading when there is none.
+  double direction = percept.pose.yaw;
+  if (!waypoints_.empty())
+    direction = std::atan2(waypoints_.front().y - percept.pose.y, waypoints_.front().x - percept.pose.x);
+  // 0.7 m: beyond the base's own disc, where the obstacle that stops it stands (mission_eval tune seeds
+  // 101-160: 0.5 / 0.7 / 0.9 m completed 50 / 52 / 50 missions).
+  const double distance = 0.7;
+  blocked_points_.emplace_back(percept.pose.x + distance * std::cos(direction),
+                               percept.pose.y + distance * std::sin(direction));
   replanSoon();
 }
 

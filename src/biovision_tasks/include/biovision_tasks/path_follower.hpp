@@ -24,8 +24,8 @@ public:
   /// Replans at the next waypoint() call.
   void replanSoon() { planned_at_ = -1e18; }
   /// The base is trapped: what stops it is in its STM but not (yet) in the LTM, so the plan keeps leading into
-  /// it. Marks a disc of robot_radius half a metre ahead of the base as an obstacle in every later plan of this
-  /// goal (a new goal forgets them) and replans.
+  /// it. Marks a disc of robot_radius 0.7 m from the base towards the current waypoint (its heading when there
+  /// is none) as an obstacle in every later plan of this goal (a new goal forgets them) and replans.
   void blockAhead(const Percept& percept);
   /// The waypoint to drive to now [m, map].
   cv::Point2d waypoint(const Percept& percept);

@@ -113,8 +113,39 @@ void DisparityDog::recursiveAdd(const std::vector<const float*>& in, int w, floa
   }
 }
 
+void DisparityDog::setSimd(CostSimd simd)
+{
+  requireCostSimd(simd);
+  simd_ = simd;
+}
+
 void DisparityDog::filterRow(const std::vector<const float*>& in, int w, std::vector<float*>& out,
                              std::vector<std::vector<float>>& scratch) const
+{
+  if (simd_ == CostSimd::kAvx2)
+    filterRowAvx2(in, w, out, scratch);
+  else
+    filterRowGeneric(in, w, out, scratch);
+}
+
+// The same body twice, each with every call inlined (flatten) so that its loops are compiled for the
+// wrapper's instruction set. No FMA in the AVX2 target: each product and sum rounds as in the generic code.
+__attribute__((target("avx2"), flatten)) void DisparityDog::filterRowAvx2(
+    const std::vector<const float*>& in, int w, std::vector<float*>& out,
+    std::vector<std::vector<float>>& scratch) const
+{
+  filterRowBody(in, w, out, scratch);
+}
+
+__attribute__((flatten)) void DisparityDog::filterRowGeneric(const std::vector<const float*>& in, int w,
+                                                             std::vector<float*>& out,
+                                                             std::vector<std::vector<float>>& scratch) const
+{
+  filterRowBody(in, w, out, scratch);
+}
+
+void DisparityDog::filterRowBody(const std::vector<const float*>& in, int w, std::vector<float*>& out,
+                                 std::vector<std::vector<float>>& scratch) const
 {
   for (float* o : out)
     std::fill(o, o + w, 0.f);

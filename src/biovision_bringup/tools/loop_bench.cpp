@@ -5,6 +5,7 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -586,7 +587,7 @@ int main(int argc, char** argv)
 
   nlohmann::ordered_json figures;
   figures["command"] = "roslaunch biovision_bringup loop_bench.launch (loop_bench " + options.command() + ")";
-  figures["bag"] = bag_path;
+  figures["bag"] = std::filesystem::weakly_canonical(bag_path).string();  // no launch-file "../.."
   figures["hardware_threads"] = std::thread::hardware_concurrency();
   figures["opencv_threads"] = opencv_threads;
   int manager_threads = 0;
@@ -632,6 +633,15 @@ int main(int argc, char** argv)
   }
   for (const auto& [k, v] : bench.stage_rows_.items())
     figures[k] = v;
+  figures["notes"] =
+      "Phases on the same frames of the bag, one after the other, in one nodelet manager (this process). "
+      "frames_per_s: frames published per wall second while at most in_flight were unfinished (a stage that drops "
+      "a frame covers it with a later one); complete_frames_per_s: frames that got every output. Per stage: "
+      "latency from the arrival of the stage's input (the rectified image; for the end to end row, the frame's "
+      "publication) [ms]; cpu_ms_per_input: CPU of the nodelet's callback thread per input "
+      "(ScopedProcessingTimer; OpenCV's parallel_for_ on that thread with opencv_threads 1); '-' = Debian's "
+      "nodelets (debayer, rectify, SGBM), not instrumented: their CPU is in unattributed_cpu_ms_per_frame. "
+      "simd: the instruction set each of our SIMD stages ran on this CPU.";
   if (!json_path.empty())
     biovision_common::writeJsonFile(json_path, figures);
   spinner.stop();

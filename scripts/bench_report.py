@@ -110,7 +110,7 @@ def splice(folder, target):
     order = list(sections)
     for path in files:
         body = section(path, folder)
-        body.insert(2, f"Measured {now()} (re-run alone and spliced in: `bench_report.py --splice`).")
+        body.insert(2, f"Spliced in {now()} from a run of this entry alone (`bench_report.py --splice`).")
         body.insert(3, "")
         if path.stem not in sections:
             order.append(path.stem)

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -30,8 +32,12 @@
 #include <topic_tools/shape_shifter.h>
 
 #include "biovision_common/cpu_features.hpp"
+#include "biovision_common/hamming_distance.hpp"
 #include "biovision_common/tool_options.hpp"
 #include "biovision_ros_common/processing_times.hpp"
+#include "biovision_stereo/cost_simd.hpp"
+#include "biovision_stereo/hamming.hpp"
+#include "biovision_stereo/semi_global_aggregation.hpp"
 
 namespace
 {
@@ -109,6 +115,8 @@ public:
   LoopBench(ros::NodeHandle& nh, std::vector<Frame> frames, int in_flight, int warmup, double timeout)
     : nh_(nh), frames_(std::move(frames)), in_flight_(in_flight), warmup_(warmup), timeout_(timeout)
   {
+    for (const Frame& f : frames_)
+      stamps_.push_back(f.stamp);
     clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 1);
     tf_pub_ = nh_.advertise<tf2_msgs::TFMessage>("/tf", 100);
     joints_pub_ = nh_.advertise<sensor_msgs::JointState>("/joint_states", 100);
@@ -134,9 +142,14 @@ public:
     {
       std::lock_guard<std::mutex> lock(mutex_);
       arrivals_.clear();
+      latest_.clear();
       sinks_ = phase.sinks;
       for (const Sink& s : sinks_)
+      {
         arrivals_[s.topic];
+        if (s.completes)
+          latest_[s.topic] = -1;
+      }
     }
     waitForPublishers(phase);
     std::vector<ros::Subscriber> subs;
@@ -158,17 +171,10 @@ public:
     size_t timeouts = 0;
     for (size_t k = 0; k < frames_.size() && ros::ok(); ++k)
     {
-      // Keep at most in_flight_ frames unfinished.
-      const auto t_block = Clock::now();
-      while (ros::ok() && unfinished(k) >= static_cast<size_t>(in_flight_))
-      {
-        if (seconds(Clock::now() - t_block) > timeout_)
-        {
-          ++timeouts;
-          break;
-        }
-        std::this_thread::sleep_for(std::chrono::microseconds(200));
-      }
+      // Keep at most in_flight_ frames unfinished: sleep until an arrival finishes one (no polling, which
+      // took ~5% of the process's CPU samples under perf, competing with the graph it measures).
+      if (!waitUntil([&] { return unfinishedLocked(k) < static_cast<size_t>(in_flight_); }))
+        ++timeouts;
       if (static_cast<int>(k) == warmup_)
       {
         cpu_start = processCpuSeconds();
@@ -267,36 +273,48 @@ private:
   void arrived(const std::string& topic, ros::Time stamp)
   {
     const auto now = Clock::now();
-    std::lock_guard<std::mutex> lock(mutex_);
-    auto& a = arrivals_[topic];
-    a[stamp] = now;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      arrivals_[topic][stamp] = now;
+      // The topic now covers every frame up to this stamp (a frame it dropped is covered by a later one).
+      const auto latest = latest_.find(topic);
+      if (latest != latest_.end())
+      {
+        const long k = static_cast<long>(std::upper_bound(stamps_.begin(), stamps_.end(), stamp) - stamps_.begin()) - 1;
+        latest->second = std::max(latest->second, k);
+      }
+    }
+    changed_.notify_all();
   }
 
-  /// Whether `topic` has given frame k, or a later one (it dropped k).
-  bool covered(const std::map<ros::Time, Clock::time_point>& a, ros::Time stamp) const
+  /// Waits (mutex_ not held by the caller) until done() holds or timeout_ passes; false on timeout.
+  template <typename Done>
+  bool waitUntil(Done done)
   {
-    return a.lower_bound(stamp) != a.end();
+    const auto deadline = Clock::now() +
+                          std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout_));
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (!done())
+    {
+      if (!ros::ok() || Clock::now() >= deadline)
+        return false;
+      changed_.wait_for(lock, std::chrono::milliseconds(100));  // wakes on each arrival; 100 ms to see ros::ok()
+    }
+    return true;
   }
 
-  size_t unfinished(size_t next) const
+  /// Frames before `next` not yet given (or covered by a later frame) by every completing sink; mutex_ held.
+  size_t unfinishedLocked(size_t next) const
   {
-    std::lock_guard<std::mutex> lock(mutex_);
-    size_t n = 0;
-    for (size_t k = 0; k < next; ++k)
-      for (const Sink& s : sinks_)
-        if (s.completes && !covered(arrivals_.at(s.topic), frames_[k].stamp))
-        {
-          ++n;
-          break;
-        }
-    return n;
+    long covered = static_cast<long>(next) - 1;
+    for (const auto& [topic, k] : latest_)
+      covered = std::min(covered, k);
+    return next - static_cast<size_t>(covered + 1);
   }
 
   void waitAllFinished()
   {
-    const auto t0 = Clock::now();
-    while (ros::ok() && unfinished(frames_.size()) > 0 && seconds(Clock::now() - t0) < timeout_)
-      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    waitUntil([&] { return unfinishedLocked(frames_.size()) == 0; });
   }
 
   Clock::time_point lastCompletion() const
@@ -421,6 +439,9 @@ private:
   ros::Publisher clock_pub_, tf_pub_, tf_static_pub_, joints_pub_, left_pub_, right_pub_, left_info_pub_,
       right_info_pub_;
   mutable std::mutex mutex_;
+  std::condition_variable changed_;     ///< notified at each arrival
+  std::vector<ros::Time> stamps_;       ///< frames_' stamps, ascending
+  std::map<std::string, long> latest_;  ///< completing sink -> last frame index it covers (-1: none)
   std::vector<Sink> sinks_;
   std::map<std::string, std::map<ros::Time, Clock::time_point>> arrivals_;
   std::vector<Clock::time_point> published_;
@@ -566,10 +587,20 @@ int main(int argc, char** argv)
 
   nlohmann::ordered_json figures;
   figures["command"] = "roslaunch biovision_bringup loop_bench.launch (loop_bench " + options.command() + ")";
-  figures["bag"] = bag_path;
-  figures["cpu"] = biovision_common::CpuFeatures::host().describe();
+  figures["bag"] = std::filesystem::weakly_canonical(bag_path).string();  // no launch-file "../.."
   figures["hardware_threads"] = std::thread::hardware_concurrency();
   figures["opencv_threads"] = opencv_threads;
+  int manager_threads = 0;
+  ros::param::get("~num_worker_threads", manager_threads);  // nodelet::Loader's own parameter (0: one per core)
+  figures["manager_threads"] = manager_threads > 0 ? manager_threads
+                                                   : static_cast<int>(std::thread::hardware_concurrency());
+  // Which instruction set each SIMD stage of ours ran (the same libraries are loaded into this process).
+  figures["simd"] = {{"cpu", biovision_common::CpuFeatures::host().describe()},
+                     {"biobin_cost_volume", biovision_stereo::costSimdName(biovision_stereo::bestCostSimd())},
+                     {"biobin_hamming", biovision_stereo::Hamming::usesPopcnt() ? "popcnt" : "generic"},
+                     {"biobin_semi_global_aggregation", biovision_stereo::SemiGlobalAggregation::name(
+                                                            biovision_stereo::SemiGlobalAggregation::bestSimd())},
+                     {"recognition_matcher", biovision_common::toString(biovision_common::bestHammingPath())}};
   figures["in_flight"] = in_flight;
   int status = 0;
   std::stringstream list(phases_list);
@@ -602,6 +633,15 @@ int main(int argc, char** argv)
   }
   for (const auto& [k, v] : bench.stage_rows_.items())
     figures[k] = v;
+  figures["notes"] =
+      "Phases on the same frames of the bag, one after the other, in one nodelet manager (this process). "
+      "frames_per_s: frames published per wall second while at most in_flight were unfinished (a stage that drops "
+      "a frame covers it with a later one); complete_frames_per_s: frames that got every output. Per stage: "
+      "latency from the arrival of the stage's input (the rectified image; for the end to end row, the frame's "
+      "publication) [ms]; cpu_ms_per_input: CPU of the nodelet's callback thread per input "
+      "(ScopedProcessingTimer; OpenCV's parallel_for_ on that thread with opencv_threads 1); '-' = Debian's "
+      "nodelets (debayer, rectify, SGBM), not instrumented: their CPU is in unattributed_cpu_ms_per_frame. "
+      "simd: the instruction set each of our SIMD stages ran on this CPU.";
   if (!json_path.empty())
     biovision_common::writeJsonFile(json_path, figures);
   spinner.stop();

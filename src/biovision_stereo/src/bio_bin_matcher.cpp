@@ -55,6 +55,107 @@ cv::Mat toBgr8(const cv::Mat& in, const char* which)
   }
   return bgr;
 }
+
+/// Steps (b), (d) and the kappa modulation of levelCosts() for image rows [y0, y1): Hamming costs of the
+/// codes, the planar L*a*b* SAD, its N_th smallest per pixel and the colour-masked cost, written into `costs`.
+struct MaskedCostRows
+{
+  const cv::Mat* left_planes;  // 3 planes of 8-bit L*a*b*
+  const cv::Mat* right_planes;
+  const PixelDescriptorImage* left_codes;
+  const PixelDescriptorImage* right_codes;
+  CostVolume* costs;
+  int w, nd, n_th;
+  float damp, boost;
+};
+
+inline void maskedCostRows(const MaskedCostRows& in, int y0, int y1)
+{
+  const int w = in.w, nd = in.nd, n_th = in.n_th;
+  const float damp = in.damp, boost = in.boost;
+  const cv::Mat *left_planes = in.left_planes, *right_planes = in.right_planes;
+  const PixelDescriptorImage &left_codes = *in.left_codes, &right_codes = *in.right_codes;
+  CostVolume& costs = *in.costs;
+  // Signed 16 bits (SAD <= 766): SSE2 has signed 16-bit min/max/compare, so the loops below vectorise
+  // on the baseline instruction set (unsigned ones did not).
+  std::vector<std::int16_t> sad(size_t(nd) * w), carry(w);
+  std::vector<std::vector<std::int16_t>> smallest(n_th, std::vector<std::int16_t>(w));
+  for (int y = y0; y < y1; ++y)
+  {
+    const uchar *l0 = left_planes[0].ptr(y), *l1 = left_planes[1].ptr(y), *l2 = left_planes[2].ptr(y);
+    const uchar *r0 = right_planes[0].ptr(y), *r1 = right_planes[1].ptr(y), *r2 = right_planes[2].ptr(y);
+    for (int k = 0; k < nd; ++k)
+    {
+      std::int16_t* s = &sad[size_t(k) * w];
+      for (int x = 0; x < std::min(k, w); ++x)
+        s[x] = kNoMatchSad;
+      for (int x = k; x < w; ++x)
+        s[x] = static_cast<std::int16_t>(std::abs(l0[x] - r0[x - k]) + std::abs(l1[x] - r1[x - k]) +
+                                         std::abs(l2[x] - r2[x - k]));
+      Hamming::row(left_codes.row(y), right_codes.row(y), w, k, kMaxHamming, costs.slice(k).ptr<float>(y));
+    }
+    // BT = the N_th smallest SAD of each pixel: a compare-exchange chain over x, smallest[0..n_th) kept
+    // sorted per pixel, each disparity's SAD carried down the chain (exact, ties included).
+    for (auto& row : smallest)
+      std::fill(row.begin(), row.end(), std::numeric_limits<std::int16_t>::max());
+    for (int k = 0; k < nd; ++k)
+    {
+      const std::int16_t* s = &sad[size_t(k) * w];
+      std::copy(s, s + w, carry.begin());
+      for (int i = 0; i < n_th; ++i)
+      {
+        std::int16_t* m = smallest[i].data();
+        std::int16_t* v = carry.data();
+        for (int x = 0; x < w; ++x)
+        {
+          const std::int16_t lo = std::min(m[x], v[x]);
+          v[x] = std::max(m[x], v[x]);
+          m[x] = lo;
+        }
+      }
+    }
+    // phi = 1 where SAD <= BT: M (1 - kappa); else M (1 + kappa).
+    const std::int16_t* threshold = smallest[n_th - 1].data();
+    for (int k = 0; k < nd; ++k)
+    {
+      float* c = costs.slice(k).ptr<float>(y);
+      const std::int16_t* s = &sad[size_t(k) * w];
+      for (int x = 0; x < w; ++x)
+        c[x] *= s[x] <= threshold[x] ? damp : boost;
+    }
+  }
+}
+
+// The same rows compiled twice (every call inlined into each wrapper): AVX2 (16 lanes of int16, 8 of
+// float; no FMA, so the same bits) and the baseline instruction set, the fallback on every CPU.
+__attribute__((target("avx2"), flatten)) void maskedCostRowsAvx2(const MaskedCostRows& in, int y0, int y1)
+{
+  maskedCostRows(in, y0, y1);
+}
+
+__attribute__((flatten)) void maskedCostRowsGeneric(const MaskedCostRows& in, int y0, int y1)
+{
+  maskedCostRows(in, y0, y1);
+}
+
+/// Fusion of one slice row: costs above `level` averaged with the coarser level's upsampled costs.
+inline void fuseRow(float* cr, const float* ur, int w, float level)
+{
+  for (int x = 0; x < w; ++x)
+    cr[x] = cr[x] > level ? 0.5f * cr[x] + 0.5f * ur[x] : cr[x];
+}
+
+__attribute__((target("avx2"), flatten)) void fuseSliceAvx2(cv::Mat& c, const cv::Mat& up, float level)
+{
+  for (int y = 0; y < c.rows; ++y)
+    fuseRow(c.ptr<float>(y), up.ptr<float>(y), c.cols, level);
+}
+
+__attribute__((flatten)) void fuseSliceGeneric(cv::Mat& c, const cv::Mat& up, float level)
+{
+  for (int y = 0; y < c.rows; ++y)
+    fuseRow(c.ptr<float>(y), up.ptr<float>(y), c.cols, level);
+}
 }  // namespace
 
 BioBinMatcher::BioBinMatcher(const BioBinParameters& parameters) : parameters_(parameters)
@@ -74,6 +175,12 @@ BioBinMatcher::BioBinMatcher(const BioBinParameters& parameters) : parameters_(p
 }
 
 BioBinMatcher::~BioBinMatcher() = default;
+
+void BioBinMatcher::setCostSimd(CostSimd simd)
+{
+  requireCostSimd(simd);
+  cost_simd_ = simd;
+}
 
 cv::Size BioBinMatcher::levelSize(cv::Size input, size_t level) const
 {
@@ -134,62 +241,22 @@ CostVolume BioBinMatcher::levelCosts(size_t level, const cv::Mat& left, const cv
   cv::Mat left_planes[3], right_planes[3];
   cv::split(left_lab, left_planes);
   cv::split(right_lab, right_planes);
+  const MaskedCostRows rows_in{left_planes, right_planes, &left_codes, &right_codes, &costs, w, nd, n_th, damp, boost};
+  const CostSimd simd = cost_simd_;
   cv::parallel_for_(cv::Range(0, h), [&](const cv::Range& rows) {
-    // Signed 16 bits (SAD <= 766): SSE2 has signed 16-bit min/max/compare, so the loops below vectorise
-    // on the baseline instruction set (unsigned ones did not).
-    std::vector<std::int16_t> sad(size_t(nd) * w), carry(w);
-    std::vector<std::vector<std::int16_t>> smallest(n_th, std::vector<std::int16_t>(w));
-    for (int y = rows.start; y < rows.end; ++y)
-    {
-      const uchar *l0 = left_planes[0].ptr(y), *l1 = left_planes[1].ptr(y), *l2 = left_planes[2].ptr(y);
-      const uchar *r0 = right_planes[0].ptr(y), *r1 = right_planes[1].ptr(y), *r2 = right_planes[2].ptr(y);
-      for (int k = 0; k < nd; ++k)
-      {
-        std::int16_t* s = &sad[size_t(k) * w];
-        for (int x = 0; x < std::min(k, w); ++x)
-          s[x] = kNoMatchSad;
-        for (int x = k; x < w; ++x)
-          s[x] = static_cast<std::int16_t>(std::abs(l0[x] - r0[x - k]) + std::abs(l1[x] - r1[x - k]) +
-                                           std::abs(l2[x] - r2[x - k]));
-        Hamming::row(left_codes.row(y), right_codes.row(y), w, k, kMaxHamming, costs.slice(k).ptr<float>(y));
-      }
-      // BT = the N_th smallest SAD of each pixel: a compare-exchange chain over x, smallest[0..n_th) kept
-      // sorted per pixel, each disparity's SAD carried down the chain (exact, ties included).
-      for (auto& row : smallest)
-        std::fill(row.begin(), row.end(), std::numeric_limits<std::int16_t>::max());
-      for (int k = 0; k < nd; ++k)
-      {
-        const std::int16_t* s = &sad[size_t(k) * w];
-        std::copy(s, s + w, carry.begin());
-        for (int i = 0; i < n_th; ++i)
-        {
-          std::int16_t* m = smallest[i].data();
-          std::int16_t* v = carry.data();
-          for (int x = 0; x < w; ++x)
-          {
-            const std::int16_t lo = std::min(m[x], v[x]);
-            v[x] = std::max(m[x], v[x]);
-            m[x] = lo;
-          }
-        }
-      }
-      // phi = 1 where SAD <= BT: M (1 - kappa); else M (1 + kappa).
-      const std::int16_t* threshold = smallest[n_th - 1].data();
-      for (int k = 0; k < nd; ++k)
-      {
-        float* c = costs.slice(k).ptr<float>(y);
-        const std::int16_t* s = &sad[size_t(k) * w];
-        for (int x = 0; x < w; ++x)
-          c[x] *= s[x] <= threshold[x] ? damp : boost;
-      }
-    }
+    if (simd == CostSimd::kAvx2)
+      maskedCostRowsAvx2(rows_in, rows.start, rows.end);
+    else
+      maskedCostRowsGeneric(rows_in, rows.start, rows.end);
   });
 
   times_.costs += msSince(t);
   t = Clock::now();
   // (e) 1-D DoG along disparity.
-  DisparityDog(parameters_.sigma1 / sf, parameters_.sigma2 / sf, parameters_.tau, parameters_.alpha, parameters_.beta)
-      .applyInPlace(costs);
+  DisparityDog dog(parameters_.sigma1 / sf, parameters_.sigma2 / sf, parameters_.tau, parameters_.alpha,
+                   parameters_.beta);
+  dog.setSimd(cost_simd_);
+  dog.applyInPlace(costs);
   times_.dog += msSince(t);
   return costs;
 }
@@ -210,14 +277,10 @@ void BioBinMatcher::fuseWithCoarser(CostVolume& costs, const CostVolume& coarser
       const int k0 = std::min(static_cast<int>(kc), d_in - 1), k1 = std::min(k0 + 1, d_in - 1);
       cv::addWeighted(coarser.slice(k0), 1.0 - (kc - k0), coarser.slice(k1), kc - k0, 0.0, mixed);
       cv::resize(mixed, up, costs.size(), 0, 0, cv::INTER_LINEAR);
-      cv::Mat& c = costs.slice(k);
-      for (int y = 0; y < c.rows; ++y)
-      {
-        float* cr = c.ptr<float>(y);
-        const float* ur = up.ptr<float>(y);
-        for (int x = 0; x < c.cols; ++x)
-          cr[x] = cr[x] > level ? 0.5f * cr[x] + 0.5f * ur[x] : cr[x];
-      }
+      if (cost_simd_ == CostSimd::kAvx2)
+        fuseSliceAvx2(costs.slice(k), up, level);
+      else
+        fuseSliceGeneric(costs.slice(k), up, level);
     }
   });
 }

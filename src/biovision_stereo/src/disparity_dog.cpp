@@ -50,8 +50,8 @@ DisparityDog::Recursive DisparityDog::recursive(double sigma)
   return r;
 }
 
-void DisparityDog::firAdd(const std::vector<const float*>& in, int w, const std::vector<float>& t, float gain,
-                          std::vector<float*>& out) const
+inline void DisparityDog::firAdd(const std::vector<const float*>& in, int w, const std::vector<float>& t, float gain,
+                                 std::vector<float*>& out) const
 {
   const int nd = static_cast<int>(in.size()), r = static_cast<int>(t.size() / 2);
   for (int k = 0; k < nd; ++k)
@@ -72,8 +72,8 @@ void DisparityDog::firAdd(const std::vector<const float*>& in, int w, const std:
   }
 }
 
-void DisparityDog::recursiveAdd(const std::vector<const float*>& in, int w, float gain, std::vector<float*>& out,
-                                std::vector<std::vector<float>>& s) const
+inline void DisparityDog::recursiveAdd(const std::vector<const float*>& in, int w, float gain, std::vector<float*>& out,
+                                       std::vector<std::vector<float>>& s) const
 {
   // The recursion runs over the cost curve extended by `pad` replicated values at both ends, so that
   // its start-up transients fall outside the range and the result matches the replicated-border FIR.
@@ -113,8 +113,40 @@ void DisparityDog::recursiveAdd(const std::vector<const float*>& in, int w, floa
   }
 }
 
+void DisparityDog::setSimd(CostSimd simd)
+{
+  requireCostSimd(simd);
+  simd_ = simd;
+}
+
 void DisparityDog::filterRow(const std::vector<const float*>& in, int w, std::vector<float*>& out,
                              std::vector<std::vector<float>>& scratch) const
+{
+  if (simd_ == CostSimd::kAvx2)
+    filterRowAvx2(in, w, out, scratch);
+  else
+    filterRowGeneric(in, w, out, scratch);
+}
+
+// The same body twice, each with every call inlined (flatten) so that its loops are compiled for the
+// wrapper's instruction set (the callees are `inline`: an exported member of a -fPIC library could be
+// interposed, and GCC does not inline those). No FMA in the AVX2 target: each product and sum rounds as in the generic code.
+__attribute__((target("avx2"), flatten)) void DisparityDog::filterRowAvx2(
+    const std::vector<const float*>& in, int w, std::vector<float*>& out,
+    std::vector<std::vector<float>>& scratch) const
+{
+  filterRowBody(in, w, out, scratch);
+}
+
+__attribute__((flatten)) void DisparityDog::filterRowGeneric(const std::vector<const float*>& in, int w,
+                                                             std::vector<float*>& out,
+                                                             std::vector<std::vector<float>>& scratch) const
+{
+  filterRowBody(in, w, out, scratch);
+}
+
+inline void DisparityDog::filterRowBody(const std::vector<const float*>& in, int w, std::vector<float*>& out,
+                                        std::vector<std::vector<float>>& scratch) const
 {
   for (float* o : out)
     std::fill(o, o + w, 0.f);

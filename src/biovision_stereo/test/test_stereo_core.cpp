@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -11,6 +12,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "biovision_stereo/bio_bin_matcher.hpp"
+#include "biovision_stereo/cost_simd.hpp"
 #include "biovision_stereo/disparity_dog.hpp"
 #include "biovision_common/eval/disparity_metrics.hpp"
 #include "biovision_stereo/hamming.hpp"
@@ -348,6 +350,80 @@ TEST(BioBinMatcher, LeftRightCheckInvalidatesTheOccludedBand)
       square += std::abs(disparity.at<float>(y, x) - 14) <= 1.0f;
     }
   EXPECT_GT(square, 0.9 * m);
+}
+
+// Issue 21 item 3: the cost-volume loops (masked costs, DoG, fusion) compiled for AVX2 give the baseline
+// path's values bit for bit (no FMA, no reassociation), so the speed-up changes no output.
+TEST(CostSimd, Avx2PathGivesTheGenericBitsForBit)
+{
+  std::vector<CostSimd> simds{CostSimd::kGeneric};
+  if (bestCostSimd() == CostSimd::kAvx2)
+    simds.push_back(CostSimd::kAvx2);
+  else
+  {
+    std::fprintf(stderr, "no AVX2 on this CPU: the AVX2 cost path must be refused\n");
+    DisparityDog dog(1.0, 8.0, 0.4, 1.0, 0.5);
+    EXPECT_THROW(dog.setSimd(CostSimd::kAvx2), std::invalid_argument);
+  }
+  EXPECT_EQ(costSimdName(CostSimd::kGeneric), "generic");
+  EXPECT_EQ(costSimdName(CostSimd::kAvx2), "avx2");
+  // DoG: widths that leave a remainder after 8 and 4 lanes, the recursive (sigma2 >= 2) and FIR broad pass.
+  for (const cv::Size size : {cv::Size(37, 3), cv::Size(64, 2), cv::Size(5, 4)})
+    for (const double sigma2 : {8.0, 1.5})
+    {
+      CostVolume in(size, 41);
+      cv::RNG rng(5);
+      for (int k = 0; k < in.disparities(); ++k)
+        rng.fill(in.slice(k), cv::RNG::UNIFORM, 0, 256);
+      std::vector<CostVolume> out;
+      for (const CostSimd simd : simds)
+      {
+        DisparityDog dog(1.0, sigma2, 0.4, 1.0, 0.5);
+        dog.setSimd(simd);
+        EXPECT_EQ(dog.simd(), simd);
+        CostVolume v(size, in.disparities());
+        for (int k = 0; k < in.disparities(); ++k)
+          in.slice(k).copyTo(v.slice(k));
+        dog.applyInPlace(v);
+        out.push_back(std::move(v));
+      }
+      for (size_t i = 1; i < out.size(); ++i)
+        for (int k = 0; k < in.disparities(); ++k)
+          EXPECT_EQ(cv::norm(out[0].slice(k), out[i].slice(k), cv::NORM_INF), 0.0)
+              << size << " sigma2 " << sigma2 << " slice " << k;
+    }
+  // The whole matcher (both aggregations: the iterative one fuses and filters every level), on a scene with
+  // an occluding square; width 150 is no multiple of 16.
+  const int width = 150, height = 90;
+  const cv::Mat bg = texture(cv::Size(width + 40, height), 31);
+  const cv::Mat fg = texture(cv::Size(60, 40), 32, 2);
+  cv::Mat left = bg(cv::Rect(20, 0, width, height)).clone();
+  cv::Mat right = bg(cv::Rect(20 + 5, 0, width, height)).clone();
+  fg.copyTo(left(cv::Rect(70, 25, 60, 40)));
+  fg.copyTo(right(cv::Rect(70 - 13, 25, 60, 40)));
+  for (const std::string aggregation : {"semi_global", "iterative"})
+  {
+    BioBinParameters p;
+    p.max_disparity = 24;
+    p.aggregation = aggregation;
+    std::vector<cv::Mat> maps;
+    for (const CostSimd simd : simds)
+    {
+      BioBinMatcher matcher(p);
+      matcher.setCostSimd(simd);
+      EXPECT_EQ(matcher.costSimd(), simd);
+      maps.push_back(matcher.compute(left, right).disparity);
+    }
+    int valid = 0;
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x)
+        valid += maps[0].at<float>(y, x) >= 0;
+    EXPECT_GT(valid, width * height / 2) << aggregation;  // a real map, not an empty one
+    for (size_t i = 1; i < maps.size(); ++i)
+      for (int y = 0; y < height; ++y)
+        EXPECT_EQ(std::memcmp(maps[0].ptr(y), maps[i].ptr(y), maps[0].cols * sizeof(float)), 0)
+            << aggregation << ": row " << y << " differs between generic and " << costSimdName(simds[i]);
+  }
 }
 
 TEST(BioBinMatcher, RejectsBadInputClearly)

@@ -7,6 +7,7 @@
 #include <opencv2/core.hpp>
 
 #include "biovision_stereo/bio_bin_parameters.hpp"
+#include "biovision_stereo/cost_simd.hpp"
 #include "biovision_stereo/cost_volume.hpp"
 #include "biovision_stereo/disparity_map.hpp"
 
@@ -43,6 +44,11 @@ public:
 
   const BioBinParameters& parameters() const { return parameters_; }
 
+  /// Instruction set of the cost-volume loops (costs, DoG, fusion); default bestCostSimd(). Every path
+  /// gives the same disparities bit for bit. Throws std::invalid_argument when this CPU lacks it.
+  void setCostSimd(CostSimd simd);
+  CostSimd costSimd() const { return cost_simd_; }
+
   /// Wall time of the stages of the last compute() [ms], summed over levels.
   struct StageTimes
   {
@@ -71,6 +77,7 @@ private:
 
   BioBinParameters parameters_;
   StageTimes times_;
+  CostSimd cost_simd_ = bestCostSimd();
   // Per level (each caches its DFT plans for the level size): odd cells at full resolution for the
   // descriptors, and the full quadrature bank on its exact decimated grid for the line/edge barriers.
   std::vector<std::unique_ptr<biovision_v1::SimpleCellBank>> odd_banks_;

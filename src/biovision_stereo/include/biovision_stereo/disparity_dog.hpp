@@ -2,6 +2,7 @@
 
 #include <vector>
 
+#include "biovision_stereo/cost_simd.hpp"
 #include "biovision_stereo/cost_volume.hpp"
 
 namespace biovision_stereo
@@ -22,6 +23,11 @@ public:
   void applyInPlace(CostVolume& costs) const;
   void applyReference(const CostVolume& in, CostVolume& out) const;
 
+  /// Instruction set of apply()/applyInPlace() (default bestCostSimd(); both give the same bits).
+  /// Throws std::invalid_argument when this CPU lacks it.
+  void setSimd(CostSimd simd);
+  CostSimd simd() const { return simd_; }
+
 private:
   struct Recursive
   {
@@ -32,9 +38,15 @@ private:
 
   static std::vector<float> taps(double sigma);
   static Recursive recursive(double sigma);
-  // in/out: one image row (w costs) per disparity.
+  // in/out: one image row (w costs) per disparity. filterRow() runs filterRowBody() compiled for simd_.
   void filterRow(const std::vector<const float*>& in, int w, std::vector<float*>& out,
                  std::vector<std::vector<float>>& scratch) const;
+  void filterRowAvx2(const std::vector<const float*>& in, int w, std::vector<float*>& out,
+                     std::vector<std::vector<float>>& scratch) const;
+  void filterRowGeneric(const std::vector<const float*>& in, int w, std::vector<float*>& out,
+                        std::vector<std::vector<float>>& scratch) const;
+  void filterRowBody(const std::vector<const float*>& in, int w, std::vector<float*>& out,
+                     std::vector<std::vector<float>>& scratch) const;
   void firAdd(const std::vector<const float*>& in, int w, const std::vector<float>& taps, float gain,
               std::vector<float*>& out) const;
   void recursiveAdd(const std::vector<const float*>& in, int w, float gain, std::vector<float*>& out,
@@ -43,5 +55,6 @@ private:
   double tau_, alpha_, beta_;
   std::vector<float> narrow_, broad_;
   Recursive broad_recursive_;
+  CostSimd simd_ = bestCostSimd();
 };
 }  // namespace biovision_stereo

@@ -53,38 +53,6 @@ const std::vector<std::string> kPlots = {"left_image",     "saliency_map", "disp
                                          "base_attractor", "ltm",          "head_attractor", "stm"};
 constexpr int kWidth = 1600, kHeight = 1000;
 
-pid_t spawn(const std::vector<std::string>& args, const std::string& display)
-{
-  const pid_t pid = fork();
-  if (pid == 0)
-  {
-    if (!display.empty())
-      setenv("DISPLAY", display.c_str(), 1);
-    std::vector<char*> argv;
-    for (const auto& a : args)
-      argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    execvp(argv[0], argv.data());
-    _exit(127);
-  }
-  return pid;
-}
-
-void stop(pid_t pid)
-{
-  if (pid <= 0)
-    return;
-  kill(pid, SIGTERM);
-  for (int i = 0; i < 50; ++i)
-  {
-    if (waitpid(pid, nullptr, WNOHANG) == pid)
-      return;
-    usleep(100000);
-  }
-  kill(pid, SIGKILL);
-  waitpid(pid, nullptr, 0);
-}
-
 // The nodes subscribed to `topic` (from the master's system state).
 std::vector<std::string> subscribersOf(const std::string& topic)
 {
@@ -278,13 +246,15 @@ TEST(MonitorRviz, EveryViewHasContentAndThePanelHasEightTiles)
       number = n;
   ASSERT_GT(number, 0) << "no free X display number";
   const std::string display_name = ":" + std::to_string(number);
-  const pid_t xvfb = spawn({"Xvfb", display_name, "-screen", "0",
-                            std::to_string(kWidth) + "x" + std::to_string(kHeight) + "x24", "-nolisten", "tcp"},
-                           "");
+  const pid_t xvfb = biovision_ros_common::spawnProcess({"Xvfb", display_name, "-screen", "0",
+                                                         std::to_string(kWidth) + "x" + std::to_string(kHeight) + "x24",
+                                                         "-nolisten", "tcp"},
+                                                        "");
   Display* display = nullptr;
   waitFor([&] { return (display = XOpenDisplay(display_name.c_str())) != nullptr; }, 15.0);
   ASSERT_NE(display, nullptr) << "Xvfb did not start on " << display_name;
-  const pid_t rviz = spawn({"rviz", "-d", config, "__name:=rviz_under_test"}, display_name);
+  const pid_t rviz = biovision_ros_common::spawnProcess({"rviz", "-d", config, "__name:=rviz_under_test"},
+                                                        display_name);
 
   std::vector<std::unique_ptr<TopicProbe<sensor_msgs::Image>>> probes;
   for (const auto& p : kPlots)
@@ -485,8 +455,8 @@ TEST(MonitorRviz, EveryViewHasContentAndThePanelHasEightTiles)
     EXPECT_EQ(s.level, diagnostic_msgs::DiagnosticStatus::OK) << "rviz display '" << s.name << "' warns:" << lines;
   }
   XCloseDisplay(display);
-  stop(rviz);
-  stop(xvfb);
+  biovision_ros_common::stopProcess(rviz);
+  biovision_ros_common::stopProcess(xvfb);
 }
 
 int main(int argc, char** argv)

@@ -22,41 +22,6 @@
 using biovision_ros_common::TopicProbe;
 using biovision_ros_common::waitFor;
 
-namespace
-{
-pid_t spawn(const std::vector<std::string>& args, const std::string& display)
-{
-  const pid_t pid = fork();
-  if (pid == 0)
-  {
-    if (!display.empty())
-      setenv("DISPLAY", display.c_str(), 1);
-    std::vector<char*> argv;
-    for (const auto& a : args)
-      argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    execvp(argv[0], argv.data());
-    _exit(127);
-  }
-  return pid;
-}
-
-void stop(pid_t pid)
-{
-  if (pid <= 0)
-    return;
-  kill(pid, SIGTERM);
-  for (int i = 0; i < 50; ++i)
-  {
-    if (waitpid(pid, nullptr, WNOHANG) == pid)
-      return;
-    usleep(100000);
-  }
-  kill(pid, SIGKILL);
-  waitpid(pid, nullptr, 0);
-}
-}  // namespace
-
 TEST(RvizDisplayStatus, MissingClassIsAnErrorWrongTopicTypeIsNotOkTheRestOk)
 {
   ros::NodeHandle nh, pnh("~");
@@ -69,9 +34,10 @@ TEST(RvizDisplayStatus, MissingClassIsAnErrorWrongTopicTypeIsNotOkTheRestOk)
       number = n;
   ASSERT_GT(number, 0) << "no free X display number";
   const std::string display = ":" + std::to_string(number);
-  const pid_t xvfb = spawn({"Xvfb", display, "-screen", "0", "800x600x24", "-nolisten", "tcp"}, "");
+  const pid_t xvfb = biovision_ros_common::spawnProcess(
+      {"Xvfb", display, "-screen", "0", "800x600x24", "-nolisten", "tcp"}, "");
   ros::WallDuration(1.0).sleep();
-  const pid_t rviz = spawn({"rviz", "-d", config, "__name:=rviz_status_test"}, display);
+  const pid_t rviz = biovision_ros_common::spawnProcess({"rviz", "-d", config, "__name:=rviz_status_test"}, display);
 
   ros::Publisher right = nh.advertise<sensor_msgs::Image>("/right_type", 1);
   ros::Publisher wrong = nh.advertise<std_msgs::String>("/wrong_type", 1);
@@ -113,8 +79,8 @@ TEST(RvizDisplayStatus, MissingClassIsAnErrorWrongTopicTypeIsNotOkTheRestOk)
   EXPECT_EQ(levels["Grid"], diagnostic_msgs::DiagnosticStatus::OK);
   EXPECT_EQ(levels.count("Global Status"), 1u);
   EXPECT_EQ(waitpid(rviz, nullptr, WNOHANG), 0) << "rviz exited";
-  stop(rviz);
-  stop(xvfb);
+  biovision_ros_common::stopProcess(rviz);
+  biovision_ros_common::stopProcess(xvfb);
 }
 
 int main(int argc, char** argv)

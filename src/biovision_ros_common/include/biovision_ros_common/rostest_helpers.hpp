@@ -4,9 +4,14 @@
 // paused), watching a node's diagnostics, and collecting messages.
 
 #include <atomic>
+#include <csignal>
+#include <cstdlib>
 #include <mutex>
 #include <string>
 #include <vector>
+
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <ros/ros.h>
@@ -112,4 +117,38 @@ private:
   std::vector<typename Message::ConstPtr> messages_;
   std::atomic<size_t> count_{0};
 };
+/// Starts `args` (argv[0] looked up on PATH) as a child process, with DISPLAY set to `display` unless empty
+/// (an Xvfb for rviz). Returns its pid; the child exits 127 when the program cannot be run.
+inline pid_t spawnProcess(const std::vector<std::string>& args, const std::string& display)
+{
+  const pid_t pid = fork();
+  if (pid == 0)
+  {
+    if (!display.empty())
+      setenv("DISPLAY", display.c_str(), 1);
+    std::vector<char*> argv;
+    for (const auto& a : args)
+      argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execvp(argv[0], argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+/// SIGTERM, up to 5 s to exit, then SIGKILL; reaps the child. A pid <= 0 is ignored.
+inline void stopProcess(pid_t pid)
+{
+  if (pid <= 0)
+    return;
+  kill(pid, SIGTERM);
+  for (int i = 0; i < 50; ++i)
+  {
+    if (waitpid(pid, nullptr, WNOHANG) == pid)
+      return;
+    usleep(100000);
+  }
+  kill(pid, SIGKILL);
+  waitpid(pid, nullptr, 0);
+}
 }  // namespace biovision_ros_common

@@ -1,4 +1,5 @@
 #include "biovision_stereo/bio_bin_matcher.hpp"
+#include "biovision_stereo/occlusion_filling.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -356,6 +357,8 @@ DisparityMap BioBinMatcher::toInputResolution(cv::Mat& left_d, const cv::Mat& ri
           d[x] = DisparityMap::kInvalid;
       }
     }
+    if (parameters_.fill_occlusions)
+      OcclusionFilling::fill(left_d);
   }
   DisparityMap out;
   out.max_disparity = parameters_.max_disparity;

@@ -65,8 +65,14 @@ struct Overrides
 {
   double sgm_p1 = -1, sgm_p2 = -1, sgm_p2_barrier = -1;
   int sgm_paths = 0;
+  int fill_occlusions = -1;  // -1: the default; 0 / 1
+  double left_right_tolerance = -1;
   void apply(BioBinParameters& p) const
   {
+    if (left_right_tolerance >= 0)
+      p.left_right_tolerance = left_right_tolerance;
+    if (fill_occlusions >= 0)
+      p.fill_occlusions = fill_occlusions == 1;
     if (sgm_p1 >= 0)
       p.sgm_p1 = sgm_p1;
     if (sgm_p2 >= 0)
@@ -217,6 +223,11 @@ int main(int argc, char** argv)
   app.add_option("--sgm-p2", overrides.sgm_p2, "override BioBinParameters::sgm_p2 (tuning)");
   app.add_option("--sgm-p2-barrier", overrides.sgm_p2_barrier, "override BioBinParameters::sgm_p2_barrier (tuning)");
   app.add_option("--sgm-paths", overrides.sgm_paths, "override BioBinParameters::sgm_paths (tuning)");
+  app.add_option("--fill-occlusions", overrides.fill_occlusions,
+                 "override BioBinParameters::fill_occlusions: 0 or 1 (tuning)")
+      ->check(CLI::Range(0, 1));
+  app.add_option("--left-right-tolerance", overrides.left_right_tolerance,
+                 "override BioBinParameters::left_right_tolerance (tuning)");
   options.parse(argc, argv);
 
   cv::setNumThreads(threads);

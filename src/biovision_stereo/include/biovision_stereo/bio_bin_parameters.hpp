@@ -30,6 +30,11 @@ struct BioBinParameters
   bool subpixel = true;               ///< parabola through the winner's neighbours (beyond the thesis)
   bool left_right_check = true;       ///< invalidate pixels whose right-view disparity disagrees (beyond)
   double left_right_tolerance = 1.0;  ///< [input px]
+  /// After the left-right check, fill each invalidated pixel with the farther of the nearest valid
+  /// disparities on its row (OcclusionFilling; Hirschmueller 2008; beyond the thesis). Needs
+  /// left_right_check. Chosen on stereo_eval's train scenes only: mean bad 1.0 8.93% -> 8.04% (invalid
+  /// pixels count as bad; 2.86% were invalid); with left_right_tolerance 0 / 1 / 2: 8.23 / 8.04 / 8.03%.
+  bool fill_occlusions = true;
 
   /// Cost aggregation of the finest level (coarser levels keep the thesis' filter: their costs are the
   /// ones fused into the next finer level). "iterative": the thesis' over-relaxed filter above.

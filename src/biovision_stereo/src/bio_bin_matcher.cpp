@@ -360,6 +360,12 @@ DisparityMap BioBinMatcher::toInputResolution(cv::Mat& left_d, const cv::Mat& ri
     if (parameters_.fill_occlusions)
       OcclusionFilling::fill(left_d);
   }
+  if (parameters_.median_filter)
+  {
+    const cv::Mat invalid = left_d < 0;
+    cv::medianBlur(left_d, left_d, 3);
+    left_d.setTo(DisparityMap::kInvalid, invalid);
+  }
   DisparityMap out;
   out.max_disparity = parameters_.max_disparity;
   const double value_scale = double(input.width) / w;  // level disparities -> input pixels

@@ -426,6 +426,43 @@ TEST(BioBinMatcher, OcclusionFillingGivesTheOccludedBandTheBackground)
   EXPECT_EQ(invalid, 0);
 }
 
+TEST(BioBinMatcher, MedianFilterKeepsTheShiftAndInvalidPixels)
+{
+  // With the median and without filling, the occluded band of the scene above stays invalid; the
+  // square and the background keep their disparities.
+  const int width = 200, height = 120;
+  const cv::Mat bg = texture(cv::Size(width + 40, height), 21);
+  const cv::Mat fg = texture(cv::Size(80, 60), 22, 2);
+  cv::Mat left = bg(cv::Rect(20, 0, width, height)).clone();
+  cv::Mat right = bg(cv::Rect(20 + 4, 0, width, height)).clone();
+  fg.copyTo(left(cv::Rect(100, 30, 80, 60)));
+  fg.copyTo(right(cv::Rect(100 - 14, 30, 80, 60)));
+  BioBinParameters p;
+  p.max_disparity = 24;
+  p.fill_occlusions = false;
+  p.median_filter = false;
+  const cv::Mat raw = BioBinMatcher(p).compute(left, right).disparity;
+  p.median_filter = true;
+  const cv::Mat median = BioBinMatcher(p).compute(left, right).disparity;
+  int still_invalid = 0, invalid = 0, square = 0, m = 0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      if (raw.at<float>(y, x) < 0)
+      {
+        ++invalid;
+        still_invalid += median.at<float>(y, x) < 0;
+      }
+  EXPECT_GT(invalid, 0);
+  EXPECT_EQ(still_invalid, invalid);
+  for (int y = 45; y < 75; ++y)
+    for (int x = 115; x < 170; ++x)
+    {
+      ++m;
+      square += std::abs(median.at<float>(y, x) - 14) <= 1.0f;
+    }
+  EXPECT_GT(square, 0.9 * m);
+}
+
 TEST(BioBinMatcher, RejectsBadInputClearly)
 {
   BioBinParameters p;

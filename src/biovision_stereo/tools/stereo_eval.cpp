@@ -67,8 +67,11 @@ struct Overrides
   int sgm_paths = 0;
   int fill_occlusions = -1;  // -1: the default; 0 / 1
   double left_right_tolerance = -1;
+  int median_filter = -1;  // -1: the default; 0 / 1
   void apply(BioBinParameters& p) const
   {
+    if (median_filter >= 0)
+      p.median_filter = median_filter == 1;
     if (left_right_tolerance >= 0)
       p.left_right_tolerance = left_right_tolerance;
     if (fill_occlusions >= 0)
@@ -225,6 +228,9 @@ int main(int argc, char** argv)
   app.add_option("--sgm-paths", overrides.sgm_paths, "override BioBinParameters::sgm_paths (tuning)");
   app.add_option("--fill-occlusions", overrides.fill_occlusions,
                  "override BioBinParameters::fill_occlusions: 0 or 1 (tuning)")
+      ->check(CLI::Range(0, 1));
+  app.add_option("--median-filter", overrides.median_filter,
+                 "override BioBinParameters::median_filter: 0 or 1 (tuning)")
       ->check(CLI::Range(0, 1));
   app.add_option("--left-right-tolerance", overrides.left_right_tolerance,
                  "override BioBinParameters::left_right_tolerance (tuning)");

@@ -35,6 +35,10 @@ struct BioBinParameters
   /// left_right_check. Chosen on stereo_eval's train scenes only: mean bad 1.0 8.93% -> 8.04% (invalid
   /// pixels count as bad; 2.86% were invalid); with left_right_tolerance 0 / 1 / 2: 8.23 / 8.04 / 8.03%.
   bool fill_occlusions = true;
+  /// 3x3 median of the disparity map (after the left-right check and filling; invalid pixels stay
+  /// invalid), as SGM implementations do (Hirschmueller 2008); beyond the thesis. Chosen on the train
+  /// scenes only: mean bad 1.0 8.04% -> 7.95% (with filling; bad 0.5 17.5% -> 16.8%).
+  bool median_filter = true;
 
   /// Cost aggregation of the finest level (coarser levels keep the thesis' filter: their costs are the
   /// ones fused into the next finer level). "iterative": the thesis' over-relaxed filter above.

@@ -17,6 +17,8 @@ void SaliencyParameters::validate() const
   for (double s : blob_sigmas)
     if (!(s > 0 && s <= 200))
       fail("blob sigma outside (0, 200]");
+  if (!(blob_pyramid_sigma >= 0 && blob_pyramid_sigma <= 100))
+    fail("blob_pyramid_sigma outside [0, 100]");
   if (!(colour_weight >= 0 && disparity_weight >= 0 && motion_weight >= 0) ||
       colour_weight + disparity_weight + motion_weight <= 0)
     fail("weights must be >= 0 and not all 0");

@@ -44,7 +44,9 @@ float medianComponent(const cv::Mat& flow, int c)
 }  // namespace
 
 SaliencyPipeline::SaliencyPipeline(const SaliencyParameters& parameters)
-  : parameters_(parameters), blobs_(workingSigmas(parameters)), ior_(parameters.ior_radius, parameters.ior_decay_time)
+  : parameters_(parameters),
+    blobs_(workingSigmas(parameters), parameters.blob_pyramid_sigma),
+    ior_(parameters.ior_radius, parameters.ior_decay_time)
 {
   parameters_.validate();
   if (parameters_.use_dis_flow)

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
+#include "biovision_saliency/blob_filter_bank.hpp"
 #include "biovision_saliency/inhibition_of_return.hpp"
 #include "biovision_saliency/saliency_pipeline.hpp"
 
@@ -42,6 +43,50 @@ HeadDirection head(double pan = 0.0)
   return h;  // focal from the default field of view
 }
 }  // namespace
+
+// Brute-force reference of the blob filter: two full-resolution Gaussian blurs per scale, rectified DoG.
+static void referenceBlobs(const cv::Mat& map, const std::vector<double>& sigmas, cv::Mat& on, cv::Mat& off)
+{
+  on = cv::Mat::zeros(map.size(), CV_32F);
+  off = cv::Mat::zeros(map.size(), CV_32F);
+  for (double s : sigmas)
+  {
+    cv::Mat c, r;
+    cv::GaussianBlur(map, c, cv::Size(), s, s, cv::BORDER_REPLICATE);
+    cv::GaussianBlur(map, r, cv::Size(), 2 * s, 2 * s, cv::BORDER_REPLICATE);
+    on += cv::max(c - r, 0.0);
+    off += cv::max(r - c, 0.0);
+  }
+}
+
+TEST(BlobFilterBank, SharedBlursEqualTheReferenceAndThePyramidStaysClose)
+{
+  cv::RNG rng(7);
+  cv::Mat coarse(15, 20, CV_32F), map;
+  rng.fill(coarse, cv::RNG::UNIFORM, -1.0, 1.0);
+  cv::resize(coarse, map, cv::Size(160, 120), 0, 0, cv::INTER_CUBIC);
+  cv::circle(map, cv::Point(50, 60), 8, cv::Scalar(2.0), -1);
+  const std::vector<double> sigmas{1.25, 2.5, 5.0};
+  cv::Mat ref_on, ref_off, on, off;
+  referenceBlobs(map, sigmas, ref_on, ref_off);
+  // Exact mode: the surround of one scale reused as the next one's centre changes nothing.
+  BlobFilterBank(sigmas, 0.0).positiveAndNegative(map, on, off);
+  EXPECT_EQ(cv::norm(on, ref_on, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(off, ref_off, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(BlobFilterBank(sigmas, 0.0).positive(map), ref_on, cv::NORM_INF), 0.0);
+  // Pyramid mode (the default 2.5 px): the wide blurs on coarser levels; close to the reference,
+  // and the blob's response stays where it is.
+  BlobFilterBank(sigmas, 2.5).positiveAndNegative(map, on, off);
+  double ref_max = 0;
+  cv::minMaxLoc(ref_on, nullptr, &ref_max);
+  EXPECT_LT(cv::norm(on, ref_on, cv::NORM_L2) / cv::norm(ref_on, cv::NORM_L2), 0.1);
+  EXPECT_LT(cv::norm(off, ref_off, cv::NORM_L2) / cv::norm(ref_off, cv::NORM_L2), 0.1);
+  EXPECT_LT(cv::norm(on, ref_on, cv::NORM_INF), 0.1 * ref_max);
+  cv::Point peak, ref_peak;
+  cv::minMaxLoc(on, nullptr, nullptr, nullptr, &peak);
+  cv::minMaxLoc(ref_on, nullptr, nullptr, nullptr, &ref_peak);
+  EXPECT_LE(cv::norm(peak - ref_peak), 2.0);
+}
 
 TEST(SaliencyPipeline, RedDiscOnGreyIsTheTopRegion)
 {

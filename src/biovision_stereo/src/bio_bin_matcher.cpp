@@ -1,4 +1,5 @@
 #include "biovision_stereo/bio_bin_matcher.hpp"
+#include "biovision_stereo/occlusion_filling.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -419,6 +420,14 @@ DisparityMap BioBinMatcher::toInputResolution(cv::Mat& left_d, const cv::Mat& ri
           d[x] = DisparityMap::kInvalid;
       }
     }
+    if (parameters_.fill_occlusions)
+      OcclusionFilling::fill(left_d);
+  }
+  if (parameters_.median_filter)
+  {
+    const cv::Mat invalid = left_d < 0;
+    cv::medianBlur(left_d, left_d, 3);
+    left_d.setTo(DisparityMap::kInvalid, invalid);
   }
   DisparityMap out;
   out.max_disparity = parameters_.max_disparity;

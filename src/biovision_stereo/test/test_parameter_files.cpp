@@ -33,6 +33,8 @@ TEST(ParameterFiles, CfgDefaultsEqualTheCoreDefaults)
   EXPECT_EQ(cfg.subpixel, core.subpixel);
   EXPECT_EQ(cfg.left_right_check, core.left_right_check);
   EXPECT_EQ(cfg.left_right_tolerance, core.left_right_tolerance);
+  EXPECT_EQ(cfg.fill_occlusions, core.fill_occlusions);
+  EXPECT_EQ(cfg.median_filter, core.median_filter);
   EXPECT_EQ(cfg.aggregation, core.aggregation);
   EXPECT_EQ(cfg.sgm_p1, core.sgm_p1);
   EXPECT_EQ(cfg.sgm_p2, core.sgm_p2);

@@ -16,6 +16,7 @@
 #include "biovision_stereo/disparity_dog.hpp"
 #include "biovision_common/eval/disparity_metrics.hpp"
 #include "biovision_stereo/hamming.hpp"
+#include "biovision_stereo/occlusion_filling.hpp"
 #include "biovision_common/eval/middlebury_dataset.hpp"
 #include "biovision_stereo/pixel_descriptor.hpp"
 #include "biovision_stereo/semi_global_aggregation.hpp"
@@ -331,6 +332,7 @@ TEST(BioBinMatcher, LeftRightCheckInvalidatesTheOccludedBand)
   fg.copyTo(right(cv::Rect(100 - 14, 30, 80, 60)));
   BioBinParameters p;
   p.max_disparity = 24;
+  p.fill_occlusions = false;
   BioBinMatcher matcher(p);
   const cv::Mat disparity = matcher.compute(left, right).disparity;
   int invalid = 0, n = 0;
@@ -424,6 +426,117 @@ TEST(CostSimd, Avx2PathGivesTheGenericBitsForBit)
         EXPECT_EQ(std::memcmp(maps[0].ptr(y), maps[i].ptr(y), maps[0].cols * sizeof(float)), 0)
             << aggregation << ": row " << y << " differs between generic and " << costSimdName(simds[i]);
   }
+}
+
+// Brute-force reference of OcclusionFilling: per invalid pixel, scan left and right for the nearest valid value.
+static cv::Mat referenceFill(const cv::Mat& in)
+{
+  cv::Mat out = in.clone();
+  for (int y = 0; y < in.rows; ++y)
+    for (int x = 0; x < in.cols; ++x)
+    {
+      if (in.at<float>(y, x) >= 0)
+        continue;
+      float l = -1, r = -1;
+      for (int i = x - 1; i >= 0 && l < 0; --i)
+        l = in.at<float>(y, i) >= 0 ? in.at<float>(y, i) : -1;
+      for (int i = x + 1; i < in.cols && r < 0; ++i)
+        r = in.at<float>(y, i) >= 0 ? in.at<float>(y, i) : -1;
+      if (l >= 0 && r >= 0)
+        out.at<float>(y, x) = std::min(l, r);
+      else if (l >= 0)
+        out.at<float>(y, x) = l;
+      else if (r >= 0)
+        out.at<float>(y, x) = r;
+    }
+  return out;
+}
+
+TEST(OcclusionFilling, EqualsTheBruteForceReference)
+{
+  std::mt19937 rng(5);
+  for (int trial = 0; trial < 20; ++trial)
+  {
+    const int w = 1 + trial * 3, h = 1 + trial % 4;
+    std::uniform_real_distribution<float> value(0.f, 30.f);
+    std::bernoulli_distribution invalid(trial % 5 == 4 ? 0.95 : 0.4);
+    cv::Mat d(h, w, CV_32F);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        d.at<float>(y, x) = invalid(rng) ? -1.f : value(rng);
+    if (trial == 3)
+      d.row(0).setTo(-1.f);  // a row without any valid pixel stays invalid
+    const cv::Mat expected = referenceFill(d);
+    OcclusionFilling::fill(d);
+    EXPECT_EQ(cv::norm(d, expected, cv::NORM_INF), 0.0) << "trial " << trial;
+  }
+  cv::Mat wrong(2, 2, CV_16S);
+  EXPECT_THROW(OcclusionFilling::fill(wrong), std::invalid_argument);
+}
+
+TEST(BioBinMatcher, OcclusionFillingGivesTheOccludedBandTheBackground)
+{
+  // The scene of LeftRightCheckInvalidatesTheOccludedBand: the band left of the square is background (4).
+  const int width = 200, height = 120;
+  const cv::Mat bg = texture(cv::Size(width + 40, height), 21);
+  const cv::Mat fg = texture(cv::Size(80, 60), 22, 2);
+  cv::Mat left = bg(cv::Rect(20, 0, width, height)).clone();
+  cv::Mat right = bg(cv::Rect(20 + 4, 0, width, height)).clone();
+  fg.copyTo(left(cv::Rect(100, 30, 80, 60)));
+  fg.copyTo(right(cv::Rect(100 - 14, 30, 80, 60)));
+  BioBinParameters p;
+  p.max_disparity = 24;
+  p.fill_occlusions = true;
+  const cv::Mat disparity = BioBinMatcher(p).compute(left, right).disparity;
+  int background = 0, n = 0, invalid = 0;
+  for (int y = 40; y < 80; ++y)
+    for (int x = 91; x < 99; ++x)
+    {
+      ++n;
+      background += std::abs(disparity.at<float>(y, x) - 4) <= 1.0f;
+    }
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      invalid += disparity.at<float>(y, x) < 0;
+  EXPECT_GT(background, 0.8 * n) << "occluded band: " << background << " of " << n << " at the background";
+  EXPECT_EQ(invalid, 0);
+}
+
+TEST(BioBinMatcher, MedianFilterKeepsTheShiftAndInvalidPixels)
+{
+  // With the median and without filling, the occluded band of the scene above stays invalid; the
+  // square and the background keep their disparities.
+  const int width = 200, height = 120;
+  const cv::Mat bg = texture(cv::Size(width + 40, height), 21);
+  const cv::Mat fg = texture(cv::Size(80, 60), 22, 2);
+  cv::Mat left = bg(cv::Rect(20, 0, width, height)).clone();
+  cv::Mat right = bg(cv::Rect(20 + 4, 0, width, height)).clone();
+  fg.copyTo(left(cv::Rect(100, 30, 80, 60)));
+  fg.copyTo(right(cv::Rect(100 - 14, 30, 80, 60)));
+  BioBinParameters p;
+  p.max_disparity = 24;
+  p.fill_occlusions = false;
+  p.median_filter = false;
+  const cv::Mat raw = BioBinMatcher(p).compute(left, right).disparity;
+  p.median_filter = true;
+  const cv::Mat median = BioBinMatcher(p).compute(left, right).disparity;
+  int still_invalid = 0, invalid = 0, square = 0, m = 0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      if (raw.at<float>(y, x) < 0)
+      {
+        ++invalid;
+        still_invalid += median.at<float>(y, x) < 0;
+      }
+  EXPECT_GT(invalid, 0);
+  EXPECT_EQ(still_invalid, invalid);
+  for (int y = 45; y < 75; ++y)
+    for (int x = 115; x < 170; ++x)
+    {
+      ++m;
+      square += std::abs(median.at<float>(y, x) - 14) <= 1.0f;
+    }
+  EXPECT_GT(square, 0.9 * m);
 }
 
 TEST(BioBinMatcher, RejectsBadInputClearly)

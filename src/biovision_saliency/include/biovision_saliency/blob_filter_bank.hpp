@@ -13,8 +13,11 @@ namespace biovision_saliency
 class BlobFilterBank
 {
 public:
-  /// sigmas: centre sigmas sigma+ in working-resolution pixels.
-  explicit BlobFilterBank(std::vector<double> sigmas);
+  /// sigmas: centre sigmas sigma+ in working-resolution pixels. pyramid_sigma [working px]: a blur of
+  /// sigma s runs on the coarsest pyrDown level where s / 2^level >= pyramid_sigma (the pyramid's own
+  /// smoothing subtracted, upsampled bilinearly), as Itti-Koch-style models compute their centre-surround
+  /// maps on a pyramid; 0 = every blur exactly at the working resolution.
+  explicit BlobFilterBank(std::vector<double> sigmas, double pyramid_sigma = 0.0);
 
   /// Sum over scales of the rectified DoG responses: (on, off) = ([.]^+, [.]^-). map: CV_32F.
   void positiveAndNegative(const cv::Mat& map, cv::Mat& on, cv::Mat& off) const;
@@ -27,5 +30,6 @@ private:
   void filter(const cv::Mat& map, cv::Mat& on, cv::Mat* off) const;
 
   std::vector<double> sigmas_;
+  double pyramid_sigma_;
 };
 }  // namespace biovision_saliency

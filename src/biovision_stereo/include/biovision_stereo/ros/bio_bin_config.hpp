@@ -29,6 +29,8 @@ inline BioBinParameters toBioBinParameters(const BioBinDisparityConfig& config)
   p.subpixel = config.subpixel;
   p.left_right_check = config.left_right_check;
   p.left_right_tolerance = config.left_right_tolerance;
+  p.fill_occlusions = config.fill_occlusions;
+  p.median_filter = config.median_filter;
   p.aggregation = config.aggregation;
   p.sgm_p1 = config.sgm_p1;
   p.sgm_p2 = config.sgm_p2;

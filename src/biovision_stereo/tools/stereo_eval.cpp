@@ -116,8 +116,7 @@ std::map<std::string, Matcher> makeMatchers(std::map<std::string, std::unique_pt
 {
   std::map<std::string, Matcher> m;
   const auto biobin = [&keep](const std::string& name, const std::vector<double>& wavelengths,
-                              const std::string& aggregation, bool filled = false,
-                              CostSimd simd = bestCostSimd()) {
+                              const std::string& aggregation, bool filled = false, CostSimd simd = bestCostSimd()) {
     return [&keep, name, wavelengths, aggregation, filled, simd](const StereoScene& s) {
       auto& matcher = keep[name + ":" + s.name];
       if (!matcher)

@@ -153,23 +153,46 @@ cv::Mat ratesChart(const nlohmann::json& report)
   const auto& topics = report.at("topics");
   const int rows = std::max<int>(1, int(topics.size()));
   const int row_h = 20, label_w = 260, width = 720;
-  cv::Mat image(rows * row_h + 40, width, CV_8UC3, colours::kBackground);
-  double max_rate = 1.0;
+  // Two columns when topic_report measured header-stamp latencies: rate bars, then p50 bars with a p95 tick.
+  double max_rate = 1.0, max_latency = 0.0;
   for (const auto& [name, t] : topics.items())
+  {
     max_rate = std::max(max_rate, t.value("rate_hz", 0.0));
+    if (t.contains("latency_ms"))
+      max_latency = std::max(max_latency, t["latency_ms"].value("p95", 0.0));
+  }
+  const bool latency = max_latency > 0;
+  const int rate_w = latency ? 150 : width - label_w - 70, latency_x = label_w + rate_w + 60;
+  const int latency_w = width - latency_x - 80;
+  cv::Mat image(rows * row_h + 40, width, CV_8UC3, colours::kBackground);
   cv::putText(image, "message rate [Hz] per topic", {8, 16}, cv::FONT_HERSHEY_SIMPLEX, 0.45, colours::kAxis, 1,
               cv::LINE_AA);
+  if (latency)
+    cv::putText(image, "latency since the stamp, p50 / p95 [ms]", {latency_x, 16}, cv::FONT_HERSHEY_SIMPLEX, 0.4,
+                colours::kAxis, 1, cv::LINE_AA);
   int y = 28;
   for (const auto& [name, t] : topics.items())
   {
     const double rate = t.value("rate_hz", 0.0);
     const int messages = t.value("messages", 0);
-    const int bar = int((width - label_w - 70) * rate / max_rate);
+    const int bar = int(rate_w * rate / max_rate);
     cv::putText(image, name, {8, y + 14}, cv::FONT_HERSHEY_SIMPLEX, 0.4, colours::kAxis, 1, cv::LINE_AA);
     const cv::Scalar colour = messages > 0 ? colours::kSum : colours::kRepulsion;
     cv::rectangle(image, {label_w, y + 3}, {label_w + std::max(bar, 2), y + row_h - 3}, colour, cv::FILLED);
     cv::putText(image, messages > 0 ? formatNumber(rate, 1) : std::string("silent"),
                 {label_w + std::max(bar, 2) + 6, y + 14}, cv::FONT_HERSHEY_SIMPLEX, 0.4, colour, 1, cv::LINE_AA);
+    if (latency && t.contains("latency_ms"))
+    {
+      const double p50 = t["latency_ms"].value("p50", 0.0), p95 = t["latency_ms"].value("p95", 0.0);
+      const int b50 = int(latency_w * std::max(0.0, p50) / max_latency);
+      const int b95 = int(latency_w * std::max(0.0, p95) / max_latency);
+      cv::rectangle(image, {latency_x, y + 3}, {latency_x + std::max(b50, 2), y + row_h - 3}, colours::kAttraction,
+                    cv::FILLED);
+      cv::line(image, {latency_x + b95, y + 2}, {latency_x + b95, y + row_h - 2}, colours::kAxis, 2);
+      cv::putText(image, formatNumber(p50, 0) + " / " + formatNumber(p95, 0),
+                  {latency_x + std::max(b95, b50) + 6, y + 14}, cv::FONT_HERSHEY_SIMPLEX, 0.4, colours::kAxis, 1,
+                  cv::LINE_AA);
+    }
     y += row_h;
   }
   return image;
@@ -275,10 +298,17 @@ std::vector<std::string> RunReport::write() const
   }
   if (have_report)
   {
-    page << "<h2>Topics</h2>\n<table><tr><th>topic</th><th>messages</th><th>rate [Hz]</th></tr>\n";
+    page << "<h2>Topics</h2>\n<table><tr><th>topic</th><th>messages</th><th>rate [Hz]</th><th>latency since the "
+            "stamp, p50 / p95 [ms]</th></tr>\n";
     for (const auto& [name, t] : report.at("topics").items())
+    {
+      std::string latency = "-";
+      if (t.contains("latency_ms"))
+        latency = formatNumber(t["latency_ms"].value("p50", 0.0), 1) + " / " +
+                  formatNumber(t["latency_ms"].value("p95", 0.0), 1);
       page << "<tr><td><code>" << html(name) << "</code></td><td>" << t.value("messages", 0) << "</td><td>"
-           << formatNumber(t.value("rate_hz", 0.0), 2) << "</td></tr>\n";
+           << formatNumber(t.value("rate_hz", 0.0), 2) << "</td><td>" << latency << "</td></tr>\n";
+    }
     page << "</table>\n";
   }
   if (have_fix)

@@ -293,6 +293,23 @@ TEST(RunReport, WritesPicturesAndASelfContainedPage)
   EXPECT_NE(text.str().find("recognition.json"), std::string::npos) << "missing inputs are named";
   std::ofstream(dir + "/pan.csv") << "t,pan\nbroken\n";
   EXPECT_THROW(RunReport(dir).write(), std::runtime_error);
+  // With latencies the rates chart gets a second column: the p50 bar (attraction green) right of the rates.
+  std::remove((dir + "/pan.csv").c_str());
+  std::ofstream(dir + "/report.json") << R"({"title": "t", "ok": true, "listened_s": 3, "topics": )"
+                                      << R"({"a": {"messages": 3, "rate_hz": 1.0, "latency_ms": )"
+                                      << R"({"p50": 80.0, "p95": 120.0, "samples": 3}}}})";
+  RunReport(dir).write();
+  const cv::Mat rates = cv::imread(dir + "/rates.png");
+  ASSERT_FALSE(rates.empty());
+  int green_right = 0;
+  for (int y = 0; y < rates.rows; ++y)
+    for (int x = rates.cols / 2; x < rates.cols; ++x)
+      green_right += near(rates.at<cv::Vec3b>(y, x), colours::kAttraction);
+  EXPECT_GT(green_right, 100);
+  std::ifstream page2(dir + "/report.html");
+  std::stringstream text2;
+  text2 << page2.rdbuf();
+  EXPECT_NE(text2.str().find("80.0 / 120.0"), std::string::npos);
   for (const char* f : {"pan.csv", "fixations.json", "report.json", "report.html", "pan.png", "rates.png"})
     std::remove((dir + "/" + f).c_str());
   rmdir(folder);

@@ -9,7 +9,9 @@ namespace biovision_monitor
 /// left in its folder and writes, next to it,
 ///  - pan.png: the head's pan [deg] over time (pan.csv: "t,pan" in s and rad) with the fixations of
 ///    fixations.json marked by object name;
-///  - rates.png: each topic's message rate [Hz] from report.json (topic_report), silent topics in red;
+///  - rates.png: each topic's message rate [Hz] from report.json (topic_report), silent topics in red, and
+///    beside it, when topic_report measured them, the latency since the header stamp (p50 bar, p95 tick)
+///    [ms] — per stage, the time since the camera frame its output comes from was taken;
 ///  - path.png: the path driven (path.csv: "t,x,y" in s and m, map frame) over the long-term memory
 ///    (mission.json's ltm_map: a PGM of the grid's signed bytes, its origin and resolution), with home,
 ///    the target, the new obstacle and the remembered objects of mission.json (biovision_tasks'

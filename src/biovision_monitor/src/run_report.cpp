@@ -163,13 +163,13 @@ cv::Mat ratesChart(const nlohmann::json& report)
   }
   const bool latency = max_latency > 0;
   const int rate_w = latency ? 150 : width - label_w - 70, latency_x = label_w + rate_w + 60;
-  const int latency_w = width - latency_x - 80;
+  const int latency_w = width - latency_x - 110;  // room for the "p50 / p95" label
   cv::Mat image(rows * row_h + 40, width, CV_8UC3, colours::kBackground);
   cv::putText(image, "message rate [Hz] per topic", {8, 16}, cv::FONT_HERSHEY_SIMPLEX, 0.45, colours::kAxis, 1,
               cv::LINE_AA);
   if (latency)
-    cv::putText(image, "latency since the stamp, p50 / p95 [ms]", {latency_x, 16}, cv::FONT_HERSHEY_SIMPLEX, 0.4,
-                colours::kAxis, 1, cv::LINE_AA);
+    cv::putText(image, "latency p50 / p95 [ms]", {latency_x, 16}, cv::FONT_HERSHEY_SIMPLEX, 0.4, colours::kAxis, 1,
+                cv::LINE_AA);
   int y = 28;
   for (const auto& [name, t] : topics.items())
   {

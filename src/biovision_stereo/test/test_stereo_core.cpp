@@ -108,6 +108,18 @@ std::vector<long> sgmReference(const std::vector<std::uint16_t>& costs, int w, i
   }
   return sum;
 }
+
+// Background at disparity 4 and an 80x60 foreground square at disparity 14 (x 100..179, y 30..89 in the
+// left image): left of the square a 10 px band of background is visible in the left image only.
+void occludedScene(int width, int height, cv::Mat& left, cv::Mat& right)
+{
+  const cv::Mat bg = texture(cv::Size(width + 40, height), 21);
+  const cv::Mat fg = texture(cv::Size(80, 60), 22, 2);
+  left = bg(cv::Rect(20, 0, width, height)).clone();
+  right = bg(cv::Rect(20 + 4, 0, width, height)).clone();
+  fg.copyTo(left(cv::Rect(100, 30, 80, 60)));
+  fg.copyTo(right(cv::Rect(100 - 14, 30, 80, 60)));
+}
 }  // namespace
 
 TEST(PixelDescriptor, RollingEqualsFromScratchEverywhere)
@@ -324,12 +336,8 @@ TEST(BioBinMatcher, LeftRightCheckInvalidatesTheOccludedBand)
   // Background at disparity 4, a foreground square at disparity 14: left of the square, a band of
   // 10 px of background is visible only in the left image and must come out invalid.
   const int width = 200, height = 120;
-  const cv::Mat bg = texture(cv::Size(width + 40, height), 21);
-  const cv::Mat fg = texture(cv::Size(80, 60), 22, 2);
-  cv::Mat left = bg(cv::Rect(20, 0, width, height)).clone();
-  cv::Mat right = bg(cv::Rect(20 + 4, 0, width, height)).clone();
-  fg.copyTo(left(cv::Rect(100, 30, 80, 60)));
-  fg.copyTo(right(cv::Rect(100 - 14, 30, 80, 60)));
+  cv::Mat left, right;
+  occludedScene(width, height, left, right);
   BioBinParameters p;
   p.max_disparity = 24;
   p.fill_occlusions = false;
@@ -478,12 +486,8 @@ TEST(BioBinMatcher, OcclusionFillingGivesTheOccludedBandTheBackground)
 {
   // The scene of LeftRightCheckInvalidatesTheOccludedBand: the band left of the square is background (4).
   const int width = 200, height = 120;
-  const cv::Mat bg = texture(cv::Size(width + 40, height), 21);
-  const cv::Mat fg = texture(cv::Size(80, 60), 22, 2);
-  cv::Mat left = bg(cv::Rect(20, 0, width, height)).clone();
-  cv::Mat right = bg(cv::Rect(20 + 4, 0, width, height)).clone();
-  fg.copyTo(left(cv::Rect(100, 30, 80, 60)));
-  fg.copyTo(right(cv::Rect(100 - 14, 30, 80, 60)));
+  cv::Mat left, right;
+  occludedScene(width, height, left, right);
   BioBinParameters p;
   p.max_disparity = 24;
   p.fill_occlusions = true;
@@ -507,12 +511,8 @@ TEST(BioBinMatcher, MedianFilterKeepsTheShiftAndInvalidPixels)
   // With the median and without filling, the occluded band of the scene above stays invalid; the
   // square and the background keep their disparities.
   const int width = 200, height = 120;
-  const cv::Mat bg = texture(cv::Size(width + 40, height), 21);
-  const cv::Mat fg = texture(cv::Size(80, 60), 22, 2);
-  cv::Mat left = bg(cv::Rect(20, 0, width, height)).clone();
-  cv::Mat right = bg(cv::Rect(20 + 4, 0, width, height)).clone();
-  fg.copyTo(left(cv::Rect(100, 30, 80, 60)));
-  fg.copyTo(right(cv::Rect(100 - 14, 30, 80, 60)));
+  cv::Mat left, right;
+  occludedScene(width, height, left, right);
   BioBinParameters p;
   p.max_disparity = 24;
   p.fill_occlusions = false;

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
+#include <utility>
+#include <vector>
 
 #include "biovision_tasks/grid_planner.hpp"
 
@@ -36,6 +39,37 @@ bool inSight(const OccupancyMap& map, const cv::Point2d& a, const cv::Point2d& b
       return false;
   return true;
 }
+
+const std::pair<int, int>& key(const std::pair<int, int>& c)
+{
+  return c;
+}
+const std::pair<int, int>& key(const std::pair<const std::pair<int, int>, double>& c)
+{
+  return c.first;
+}
+
+// Keeps the half of `cells` (a std::set or std::map over (x, y) cell indices) nearest to `here` once it holds
+// more than `limit`.
+template <typename Cells>
+void forgetFarthest(Cells& cells, const std::pair<int, int>& here, size_t limit)
+{
+  if (cells.size() <= limit)
+    return;
+  auto far = [&here](const std::pair<int, int>& c) {
+    const double dx = static_cast<double>(c.first) - here.first, dy = static_cast<double>(c.second) - here.second;
+    return dx * dx + dy * dy;
+  };
+  std::vector<double> distances;
+  distances.reserve(cells.size());
+  for (const auto& c : cells)
+    distances.push_back(far(key(c)));
+  auto middle = distances.begin() + static_cast<std::ptrdiff_t>(limit / 2);
+  std::nth_element(distances.begin(), middle, distances.end());
+  const double cut = *middle;
+  for (auto it = cells.begin(); it != cells.end();)
+    it = far(key(*it)) >= cut ? cells.erase(it) : std::next(it);
+}
 }  // namespace
 
 ExplorationPlanner::Cell ExplorationPlanner::cellOf(const cv::Point2d& p) const
@@ -49,17 +83,27 @@ cv::Point2d ExplorationPlanner::centreOf(const Cell& c) const
   return {(c.first + 0.5) * parameters_.visit_cell, (c.second + 0.5) * parameters_.visit_cell};
 }
 
+bool ExplorationPlanner::usable(const Percept& percept) const
+{
+  return percept.pose_valid && std::abs(percept.pose.x) <= kMaxCoordinate &&
+         std::abs(percept.pose.y) <= kMaxCoordinate && std::isfinite(percept.pose.yaw);
+}
+
 void ExplorationPlanner::recordVisit(const Percept& percept)
 {
-  if (percept.pose_valid && last_time_ >= 0 && percept.time > last_time_)
-    visits_[cellOf({percept.pose.x, percept.pose.y})] += std::min(percept.time - last_time_, 1.0);
+  if (usable(percept) && last_time_ >= 0 && percept.time > last_time_)
+  {
+    const Cell here = cellOf({percept.pose.x, percept.pose.y});
+    visits_[here] += std::min(percept.time - last_time_, 1.0);
+    forgetFarthest(visits_, here, kMaxCells);
+  }
   last_time_ = percept.time;
   markSeen(percept);
 }
 
 void ExplorationPlanner::markSeen(const Percept& percept)
 {
-  if (!percept.pose_valid || !(parameters_.view_range > 0))
+  if (!usable(percept) || !(parameters_.view_range > 0))
     return;
   const cv::Point2d here(percept.pose.x, percept.pose.y);
   seen_.insert(cellOf(here));
@@ -84,10 +128,13 @@ void ExplorationPlanner::markSeen(const Percept& percept)
       seen_.insert(cellOf(p));
     }
   }
+  forgetFarthest(seen_, cellOf(here), kMaxCells);
 }
 
 bool ExplorationPlanner::seen(const cv::Point2d& point) const
 {
+  if (!(std::abs(point.x) <= kMaxCoordinate && std::abs(point.y) <= kMaxCoordinate))
+    return false;
   return seen_.count(cellOf(point)) > 0;
 }
 
@@ -103,7 +150,7 @@ bool ExplorationPlanner::frontier(const Percept& percept, const cv::Point2d& hom
 bool ExplorationPlanner::frontier(const Percept& percept, const cv::Point2d& home, const cv::Mat1b& blocked,
                                   cv::Point2d& goal) const
 {
-  if (!percept.pose_valid || !(parameters_.view_range > 0))
+  if (!usable(percept) || !(parameters_.view_range > 0))
     return false;
   const cv::Point2d here(percept.pose.x, percept.pose.y);
   const int threshold = parameters_.occupied_threshold;
@@ -151,6 +198,8 @@ bool ExplorationPlanner::frontier(const Percept& percept, const cv::Point2d& hom
 
 void ExplorationPlanner::markBoring(const cv::Point2d& point, double seconds)
 {
+  if (!(std::abs(point.x) <= kMaxCoordinate && std::abs(point.y) <= kMaxCoordinate))
+    return;
   const auto [cx, cy] = cellOf(point);
   for (int dx = -1; dx <= 1; ++dx)
     for (int dy = -1; dy <= 1; ++dy)
@@ -159,13 +208,15 @@ void ExplorationPlanner::markBoring(const cv::Point2d& point, double seconds)
 
 double ExplorationPlanner::visits(const cv::Point2d& point) const
 {
+  if (!(std::abs(point.x) <= kMaxCoordinate && std::abs(point.y) <= kMaxCoordinate))
+    return 0.0;
   const auto it = visits_.find(cellOf(point));
   return it == visits_.end() ? 0.0 : it->second;
 }
 
 bool ExplorationPlanner::nextGoal(const Percept& percept, const cv::Point2d& home, cv::Point2d& goal)
 {
-  if (!percept.pose_valid)
+  if (!usable(percept))
     return false;
   const cv::Point2d here(percept.pose.x, percept.pose.y);
   GridPlanner::Options o;

@@ -334,6 +334,68 @@ TEST(ExplorationPlanner, HeadsForAFrontierOfWhatTheCameraSawButNotOneBehindAWall
   EXPECT_FALSE(off.frontier(p, {-4.0, 0.0}, goal));
 }
 
+TEST(ExplorationPlanner, IgnoresPosesThatAreNotFiniteOrFarOutside)
+{
+  // A pose_valid percept with a NaN, infinite or absurd position (a broken localisation) once gave a cell
+  // index by an overflowing cast: a "frontier" a billion metres away, or undefined behaviour.
+  TaskParameters parameters;
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  for (const Percept::Pose& bad : std::vector<Percept::Pose>{
+           {nan, 0, 0}, {0, nan, 0}, {inf, 0, 0}, {0, -inf, 0}, {1e12, 0, 0}, {0, -1e300, 0}, {0, 0, nan}})
+  {
+    ExplorationPlanner planner(parameters);
+    Percept p = at(1.0, bad.x, bad.y, bad.yaw);
+    p.view_yaw = 0.0;
+    planner.recordVisit(p);
+    p.time = 2.0;
+    planner.recordVisit(p);
+    if (!std::isfinite(bad.x) || !std::isfinite(bad.y) || std::abs(bad.x) + std::abs(bad.y) > 1e6)
+      planner.markBoring({bad.x, bad.y}, 100.0);  // a goal there (only the yaw case has a good position)
+    EXPECT_EQ(planner.seenCells(), 0u) << bad.x << ", " << bad.y << ", " << bad.yaw;
+    EXPECT_EQ(planner.visitedCells(), 0u) << bad.x << ", " << bad.y << ", " << bad.yaw;
+    EXPECT_FALSE(planner.seen({bad.x, bad.y}));
+    EXPECT_EQ(planner.visits({bad.x, bad.y}), 0.0);
+    cv::Point2d goal(7, 7);
+    EXPECT_FALSE(planner.nextGoal(p, {0, 0}, goal));
+    EXPECT_FALSE(planner.frontier(at(3.0), {0, 0}, goal)) << "goal " << goal.x << ", " << goal.y;
+    EXPECT_EQ(goal, cv::Point2d(7, 7));
+  }
+}
+
+TEST(ExplorationPlanner, CoverageMemoryStaysBoundedOverALongDrive)
+{
+  // Driving on and on through an unmapped world (or a big map) keeps adding seen cells; a robot left exploring
+  // for days must not grow without bound. 40 m of all-round view at 0.2 m cells is ~31000 cells a look.
+  TaskParameters parameters;
+  parameters.view_range = 20.0;
+  parameters.visit_cell = 0.2;
+  ExplorationPlanner planner(parameters);
+  size_t most = 0;
+  double x = 0;
+  for (int k = 0; k < 30; ++k, x += 20.0)  // 600 m east, a look every 20 m (~20000 new cells each)
+  {
+    planner.recordVisit(at(k, x, 0.0));
+    most = std::max(most, planner.seenCells());
+  }
+  EXPECT_LE(most, ExplorationPlanner::kMaxCells);
+  EXPECT_GT(most, ExplorationPlanner::kMaxCells / 2) << "the cap was reached, not the drive too short";
+  // What is round the robot is kept, the start (580 m back) forgotten; the frontier is still ahead or beside.
+  EXPECT_TRUE(planner.seen({x - 20.0, 0.0}));
+  EXPECT_TRUE(planner.seen({x - 20.0 + 15.0, 0.0}));
+  EXPECT_FALSE(planner.seen({0.0, 0.0}));
+  cv::Point2d goal;
+  ASSERT_TRUE(planner.frontier(at(30, x - 20.0, 0.0), {0, 0}, goal));
+  EXPECT_LT(std::hypot(goal.x - (x - 20.0), goal.y), parameters.view_range + parameters.visit_cell);
+
+  // The visit times too (a robot wandering for ever at 1 s a cell).
+  parameters.view_range = 0;
+  ExplorationPlanner wanderer(parameters);
+  for (int k = 0; k < 300000; ++k)
+    wanderer.recordVisit(at(k, 0.2 * k, 0.2 * (k % 7)));
+  EXPECT_LE(wanderer.visitedCells(), ExplorationPlanner::kMaxCells);
+  EXPECT_GT(wanderer.visits({0.2 * 299999, 0.2 * (299999 % 7)}), 0.0);
+}
+
 TEST(PathFollower, BlockAheadPlansRoundWhatStopsTheBase)
 {
   TaskParameters parameters;

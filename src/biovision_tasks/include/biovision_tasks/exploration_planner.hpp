@@ -19,10 +19,17 @@ namespace biovision_tasks
 /// is left, boredom: the time spent in each cell is counted and the goal is the candidate point (16 bearings ×
 /// 1 and 2 × explore_step) that is least visited, free in the LTM and reachable over it, preferring the
 /// heading and points near home (home_range_cost). A goal the base could not reach (it got trapped) becomes
-/// "boring" and is not a frontier any more. Deterministic: no random numbers.
+/// "boring" and is not a frontier any more. Deterministic: no random numbers. Bounded memory: beyond
+/// kMaxCells seen (or visited) cells, the half farthest from the robot is forgotten (a long run in a big or
+/// unmapped world). Poses that are not finite or farther than kMaxCoordinate from the origin are ignored.
 class ExplorationPlanner
 {
 public:
+  /// Seen or visited cells kept at most (~48 bytes each): at visit_cell 0.5 m, 6.5 ha of coverage.
+  static constexpr size_t kMaxCells = size_t(1) << 18;
+  /// [m] poses farther out are no localisation (the cell index would overflow).
+  static constexpr double kMaxCoordinate = 1e6;
+
   explicit ExplorationPlanner(const TaskParameters& parameters);
 
   /// Accumulates the time spent at the robot's current cell since the last call and marks what the camera
@@ -36,6 +43,10 @@ public:
   double visits(const cv::Point2d& point) const;
   /// True when the cell of `point` has been seen (coverage).
   bool seen(const cv::Point2d& point) const;
+  /// Number of cells seen (coverage), at most kMaxCells.
+  size_t seenCells() const { return seen_.size(); }
+  /// Number of cells with a visit time, at most kMaxCells.
+  size_t visitedCells() const { return visits_.size(); }
   /// The best reachable frontier cell's centre [m, map] (the first choice of nextGoal); false when there is none
   /// (all seen, walled off, boring or unreachable) or view_range is 0.
   bool frontier(const Percept& percept, const cv::Point2d& home, cv::Point2d& goal) const;
@@ -45,6 +56,7 @@ private:
   Cell cellOf(const cv::Point2d& p) const;
   cv::Point2d centreOf(const Cell& c) const;
   void markSeen(const Percept& percept);
+  bool usable(const Percept& percept) const;
   bool frontier(const Percept& percept, const cv::Point2d& home, const cv::Mat1b& blocked, cv::Point2d& goal) const;
 
   TaskParameters parameters_;

@@ -39,6 +39,22 @@ nlohmann::json readJson(const std::string& path)
   }
 }
 
+// A topic's latency_ms entry as topic_report writes it ({"p50": ms, "p95": ms, ...}); false when it is missing
+// or not a pair of finite numbers (an older or hand-edited report.json): that topic shows no latency instead of
+// the whole report failing on a JSON type error.
+bool latencyOf(const nlohmann::json& topic, double& p50, double& p95)
+{
+  const auto it = topic.find("latency_ms");
+  if (it == topic.end() || !it->is_object())
+    return false;
+  const auto a = it->find("p50"), b = it->find("p95");
+  if (a == it->end() || b == it->end() || !a->is_number() || !b->is_number())
+    return false;
+  p50 = a->get<double>();
+  p95 = b->get<double>();
+  return std::isfinite(p50) && std::isfinite(p95);
+}
+
 std::string html(const std::string& text)
 {
   std::string out;
@@ -158,8 +174,9 @@ cv::Mat ratesChart(const nlohmann::json& report)
   for (const auto& [name, t] : topics.items())
   {
     max_rate = std::max(max_rate, t.value("rate_hz", 0.0));
-    if (t.contains("latency_ms"))
-      max_latency = std::max(max_latency, t["latency_ms"].value("p95", 0.0));
+    double p50, p95;
+    if (latencyOf(t, p50, p95))
+      max_latency = std::max({max_latency, p50, p95});
   }
   const bool latency = max_latency > 0;
   const int rate_w = latency ? 150 : width - label_w - 70, latency_x = label_w + rate_w + 60;
@@ -175,17 +192,17 @@ cv::Mat ratesChart(const nlohmann::json& report)
   {
     const double rate = t.value("rate_hz", 0.0);
     const int messages = t.value("messages", 0);
-    const int bar = int(rate_w * rate / max_rate);
+    const int bar = int(rate_w * std::clamp(rate / max_rate, 0.0, 1.0));  // a huge or negative rate stays in
     cv::putText(image, name, {8, y + 14}, cv::FONT_HERSHEY_SIMPLEX, 0.4, colours::kAxis, 1, cv::LINE_AA);
     const cv::Scalar colour = messages > 0 ? colours::kSum : colours::kRepulsion;
     cv::rectangle(image, {label_w, y + 3}, {label_w + std::max(bar, 2), y + row_h - 3}, colour, cv::FILLED);
     cv::putText(image, messages > 0 ? formatNumber(rate, 1) : std::string("silent"),
                 {label_w + std::max(bar, 2) + 6, y + 14}, cv::FONT_HERSHEY_SIMPLEX, 0.4, colour, 1, cv::LINE_AA);
-    if (latency && t.contains("latency_ms"))
+    double p50, p95;
+    if (latency && latencyOf(t, p50, p95))
     {
-      const double p50 = t["latency_ms"].value("p50", 0.0), p95 = t["latency_ms"].value("p95", 0.0);
-      const int b50 = int(latency_w * std::max(0.0, p50) / max_latency);
-      const int b95 = int(latency_w * std::max(0.0, p95) / max_latency);
+      const int b50 = int(latency_w * std::clamp(p50 / max_latency, 0.0, 1.0));
+      const int b95 = int(latency_w * std::clamp(p95 / max_latency, 0.0, 1.0));
       cv::rectangle(image, {latency_x, y + 3}, {latency_x + std::max(b50, 2), y + row_h - 3}, colours::kAttraction,
                     cv::FILLED);
       cv::line(image, {latency_x + b95, y + 2}, {latency_x + b95, y + row_h - 2}, colours::kAxis, 2);
@@ -303,9 +320,9 @@ std::vector<std::string> RunReport::write() const
     for (const auto& [name, t] : report.at("topics").items())
     {
       std::string latency = "-";
-      if (t.contains("latency_ms"))
-        latency = formatNumber(t["latency_ms"].value("p50", 0.0), 1) + " / " +
-                  formatNumber(t["latency_ms"].value("p95", 0.0), 1);
+      double p50, p95;
+      if (latencyOf(t, p50, p95))
+        latency = formatNumber(p50, 1) + " / " + formatNumber(p95, 1);
       page << "<tr><td><code>" << html(name) << "</code></td><td>" << t.value("messages", 0) << "</td><td>"
            << formatNumber(t.value("rate_hz", 0.0), 2) << "</td><td>" << latency << "</td></tr>\n";
     }

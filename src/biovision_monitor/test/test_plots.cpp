@@ -310,6 +310,20 @@ TEST(RunReport, WritesPicturesAndASelfContainedPage)
   std::stringstream text2;
   text2 << page2.rdbuf();
   EXPECT_NE(text2.str().find("80.0 / 120.0"), std::string::npos);
+  // A latency_ms that is not two numbers (null, text, missing p95, strings) or is huge is shown as "-" or drawn
+  // within the chart; it once threw a JSON type error and no report was written at all.
+  std::ofstream(dir + "/report.json")
+      << R"({"title": "t", "ok": true, "listened_s": 3, "topics": {)"
+      << R"("a": {"messages": 3, "rate_hz": 1.0, "latency_ms": null}, "b": {"messages": 3, "latency_ms": "slow"},)"
+      << R"("c": {"messages": 3, "latency_ms": {"p50": 3.0}}, "d": {"messages": 3, "latency_ms": {"p50": "1", "p95": 2}},)"
+      << R"("e": {"messages": 3, "rate_hz": 1e308, "latency_ms": {"p50": 1e308, "p95": 1.7e308}},)"
+      << R"("f": {"messages": 3, "rate_hz": 2.0, "latency_ms": {"p50": -5.0, "p95": 40.0}}}})";
+  EXPECT_NO_THROW(RunReport(dir).write());
+  std::ifstream page3(dir + "/report.html");
+  std::stringstream text3;
+  text3 << page3.rdbuf();
+  EXPECT_NE(text3.str().find("-5.0 / 40.0"), std::string::npos);
+  EXPECT_FALSE(cv::imread(dir + "/rates.png").empty());
   for (const char* f : {"pan.csv", "fixations.json", "report.json", "report.html", "pan.png", "rates.png"})
     std::remove((dir + "/" + f).c_str());
   rmdir(folder);

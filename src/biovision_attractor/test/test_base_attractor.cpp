@@ -235,6 +235,11 @@ TEST(BaseAttractorProperty, CommandsStayWithinTheLimitsAndFiniteUnderRandomAndNa
       // Other limits now and then (validated ones).
       p.max_linear = 0.1 + 1.1 * std::abs(u(rng));
       p.max_angular = 0.2 + 5.0 * std::abs(u(rng));
+      // blindAhead's corridor test at its extremes too: blind_distance far below the half corridor (the asin
+      // argument > 1), a blind_speed above max_linear or 0.
+      p.blind_speed = 1.2 * std::abs(u(rng));
+      p.blind_distance = k % 4000 == 0 ? 0.01 : 0.01 + 9.99 * std::abs(u(rng));
+      p.corridor_margin = std::abs(u(rng));
       a.setParameters(p);
     }
     std::vector<BaseAttractor::Sector> stm(std::uniform_int_distribution<int>(0, 12)(rng));

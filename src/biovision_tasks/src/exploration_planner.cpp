@@ -120,12 +120,16 @@ void ExplorationPlanner::markSeen(const Percept& percept)
   {
     const double a = centre - fan / 2 + fan * k / rays;
     const cv::Point2d direction(std::cos(a), std::sin(a));
+    Cell last = cellOf(here);  // steps are finer than the coverage cells: insert each cell once per ray
     for (int i = 1; i <= steps; ++i)
     {
       const cv::Point2d p = here + direction * std::min(i * step, parameters_.view_range);
       if (obstacleAt(percept.map, p, parameters_.occupied_threshold))
         break;
-      seen_.insert(cellOf(p));
+      const Cell c = cellOf(p);
+      if (c != last)
+        seen_.insert(c);
+      last = c;
     }
   }
   forgetFarthest(seen_, cellOf(here), kMaxCells);

@@ -5,30 +5,18 @@ returned a result with its reason, and — when the action says it succeeded —
 within 1 m of where it is and the robot is home. Found, returned and collisions are printed, not asserted:
 on this machine a successful run is not reliable yet (1 success in 3 runs after the session-7 merges; the
 mission figures over many rooms are mission_eval's, docs/benchmarks.md)."""
-import json
-import os
 import sys
-import time
 import unittest
 
 import rospy
 import rostest
 
+from summary_wait import wait_for_summary
+
 
 class Mission(unittest.TestCase):
     def test_the_mission_runs_to_a_defined_outcome(self):
-        path = rospy.get_param("~summary")
-        if os.path.exists(path):
-            os.remove(path)  # a previous run's
-        deadline = time.time() + float(rospy.get_param("~timeout", 300.0))
-        summary = None
-        while summary is None and time.time() < deadline and not rospy.is_shutdown():
-            time.sleep(2.0)
-            try:
-                with open(path) as f:
-                    summary = json.load(f)
-            except (OSError, ValueError):
-                pass
+        summary = wait_for_summary(rospy.get_param("~summary"), float(rospy.get_param("~timeout", 300.0)))
         self.assertIsNotNone(summary, "mission_director wrote no mission.json in time")
         print(f"mission: found {summary['found']}, returned {summary['returned']}, "
               f"collisions {summary['collisions']}: {summary['message']}")

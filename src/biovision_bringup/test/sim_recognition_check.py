@@ -4,33 +4,22 @@ at least 20 correct labels over at least 2 objects, at most 5% wrong ones (anoth
 1 of 60 in one of three runs on 2026-11-29, can_yellow named on another object — recognition has false
 positives, the thesis's too, so zero made the test flaky) and at most 5% of boxes on no object (the
 teacher's summary)."""
-import json
-import os
 import sys
-import time
 import unittest
 
 import rospy
 import rostest
 
+from summary_wait import wait_for_summary
+
 
 class SimRecognition(unittest.TestCase):
     def test_taught_objects_are_recognised_and_nothing_is_misnamed(self):
-        path = rospy.get_param("~summary")
-        if os.path.exists(path):
-            os.remove(path)  # a previous run's
-        deadline = time.time() + 120.0
-        summary = {}
-        while time.time() < deadline and not rospy.is_shutdown():
-            time.sleep(2.0)
-            try:
-                with open(path) as f:
-                    summary = json.load(f)
-            except (OSError, ValueError):
-                continue
-            named = [k for k, v in summary["per_label"].items() if v["correct"] > 0]
-            if len(summary["taught"]) >= 2 and summary["correct"] >= 20 and len(named) >= 2:
-                break
+        def enough(s):
+            named = [k for k, v in s["per_label"].items() if v["correct"] > 0]
+            return len(s["taught"]) >= 2 and s["correct"] >= 20 and len(named) >= 2
+
+        summary = wait_for_summary(rospy.get_param("~summary"), 120.0, enough) or {}
         self.assertTrue(summary, "the teacher wrote no summary")
         self.assertGreaterEqual(len(summary["taught"]), 2, summary)
         self.assertGreaterEqual(summary["correct"], 20, summary)

@@ -1,4 +1,4 @@
-// Integration test of the simulator: topics at their rates (in sim time), the rectified stereo pair
+// Integration test of the simulator: topics at their rates (in sim time, over 20 frames: 2 s of camera time), the rectified stereo pair
 // from the upstream image_proc nodelets, a tf tree that matches the camera model, the head following a
 // command within its limits, the base following cmd_vel.
 #include <atomic>
@@ -60,50 +60,56 @@ bool waitWall(Pred pred, double seconds)
 TEST(Sim, TopicsRatesTfHeadAndBase)
 {
   ros::NodeHandle nh;
-  std::map<std::string, Counter> counters;
   const std::vector<std::string> image_topics = {"stereo/left/image_raw", "stereo/right/image_raw",
                                                  "stereo/left/image_rect_color", "stereo/right/image_rect_color"};
+  // Every counter exists before the first callback: the two spinner threads and this one only look them up
+  // (inserting into a std::map from several threads at once is a data race).
+  std::map<std::string, Counter> counters;
+  for (const auto& name : image_topics)
+    counters[name];
+  for (const char* name : {"info", "joints", "odom"})
+    counters[name];
   std::vector<ros::Subscriber> subs;
   for (const auto& t : image_topics)
     subs.push_back(nh.subscribe<sensor_msgs::Image>(t, 5, [&counters, t](const sensor_msgs::ImageConstPtr& m) {
-      counters[t].tick(m->header.stamp);
+      counters.at(t).tick(m->header.stamp);
     }));
   sensor_msgs::CameraInfo right_info;
   std::mutex info_mutex;
   subs.push_back(nh.subscribe<sensor_msgs::CameraInfo>("stereo/right/camera_info", 5,
                                                        [&](const sensor_msgs::CameraInfoConstPtr& m) {
-                                                         counters["info"].tick(m->header.stamp);
+                                                         counters.at("info").tick(m->header.stamp);
                                                          std::lock_guard<std::mutex> lock(info_mutex);
                                                          right_info = *m;
                                                        }));
   std::atomic<double> pan{0.0};
   subs.push_back(
       nh.subscribe<sensor_msgs::JointState>("joint_states", 50, [&](const sensor_msgs::JointStateConstPtr& m) {
-        counters["joints"].tick(m->header.stamp);
+        counters.at("joints").tick(m->header.stamp);
         for (size_t i = 0; i < m->name.size(); ++i)
           if (m->name[i] == "head_pan_joint")
             pan = m->position[i];
       }));
   std::atomic<double> odom_x{0.0};
   subs.push_back(nh.subscribe<nav_msgs::Odometry>("odom", 50, [&](const nav_msgs::OdometryConstPtr& m) {
-    counters["odom"].tick(m->header.stamp);
+    counters.at("odom").tick(m->header.stamp);
     odom_x = m->pose.pose.position.x;
   }));
 
   ASSERT_TRUE(waitWall(
       [&] {
         for (const auto& t : image_topics)
-          if (counters[t].count() < 8)
+          if (counters.at(t).count() < 20)
             return false;
-        return counters["joints"].count() > 40 && counters["odom"].count() > 40;
+        return counters.at("joints").count() > 40 && counters.at("odom").count() > 40;
       },
       60.0))
-      << "left raw " << counters["stereo/left/image_raw"].count() << ", left rect "
-      << counters["stereo/left/image_rect_color"].count() << ", joints " << counters["joints"].count();
+      << "left raw " << counters.at("stereo/left/image_raw").count() << ", left rect "
+      << counters.at("stereo/left/image_rect_color").count() << ", joints " << counters.at("joints").count();
   for (const auto& t : image_topics)
-    EXPECT_NEAR(counters[t].rate(), 10.0, 1.5) << t;
-  EXPECT_NEAR(counters["joints"].rate(), 50.0, 5.0);
-  EXPECT_NEAR(counters["odom"].rate(), 50.0, 5.0);
+    EXPECT_NEAR(counters.at(t).rate(), 10.0, 1.5) << t;
+  EXPECT_NEAR(counters.at("joints").rate(), 50.0, 5.0);
+  EXPECT_NEAR(counters.at("odom").rate(), 50.0, 5.0);
 
   // tf (robot_state_publisher on the same URDF) and the cameras agree: baseline = P[3] / -fx.
   tf2_ros::Buffer buffer;

@@ -246,15 +246,13 @@ TEST(MonitorRviz, EveryViewHasContentAndThePanelHasEightTiles)
       number = n;
   ASSERT_GT(number, 0) << "no free X display number";
   const std::string display_name = ":" + std::to_string(number);
-  const pid_t xvfb = biovision_ros_common::spawnProcess({"Xvfb", display_name, "-screen", "0",
-                                                         std::to_string(kWidth) + "x" + std::to_string(kHeight) + "x24",
-                                                         "-nolisten", "tcp"},
-                                                        "");
+  biovision_ros_common::ChildProcess xvfb({"Xvfb", display_name, "-screen", "0",
+                                           std::to_string(kWidth) + "x" + std::to_string(kHeight) + "x24", "-nolisten",
+                                           "tcp"});
   Display* display = nullptr;
   waitFor([&] { return (display = XOpenDisplay(display_name.c_str())) != nullptr; }, 15.0);
   ASSERT_NE(display, nullptr) << "Xvfb did not start on " << display_name;
-  const pid_t rviz = biovision_ros_common::spawnProcess({"rviz", "-d", config, "__name:=rviz_under_test"},
-                                                        display_name);
+  biovision_ros_common::ChildProcess rviz({"rviz", "-d", config, "__name:=rviz_under_test"}, display_name);
 
   std::vector<std::unique_ptr<TopicProbe<sensor_msgs::Image>>> probes;
   for (const auto& p : kPlots)
@@ -360,7 +358,7 @@ TEST(MonitorRviz, EveryViewHasContentAndThePanelHasEightTiles)
     sent.push_back(probe->messages());
   const cv::Mat shot = screenshot(display);
   ASSERT_FALSE(shot.empty());
-  EXPECT_EQ(waitpid(rviz, nullptr, WNOHANG), 0) << "rviz exited";
+  EXPECT_TRUE(rviz.running()) << "rviz exited";
   if (!out_dir.empty())
   {
     cv::imwrite(out_dir + "/rviz.png", shot);
@@ -455,8 +453,6 @@ TEST(MonitorRviz, EveryViewHasContentAndThePanelHasEightTiles)
     EXPECT_EQ(s.level, diagnostic_msgs::DiagnosticStatus::OK) << "rviz display '" << s.name << "' warns:" << lines;
   }
   XCloseDisplay(display);
-  biovision_ros_common::stopProcess(rviz);
-  biovision_ros_common::stopProcess(xvfb);
 }
 
 int main(int argc, char** argv)

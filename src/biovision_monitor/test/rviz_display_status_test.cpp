@@ -34,10 +34,9 @@ TEST(RvizDisplayStatus, MissingClassIsAnErrorWrongTopicTypeIsNotOkTheRestOk)
       number = n;
   ASSERT_GT(number, 0) << "no free X display number";
   const std::string display = ":" + std::to_string(number);
-  const pid_t xvfb = biovision_ros_common::spawnProcess(
-      {"Xvfb", display, "-screen", "0", "800x600x24", "-nolisten", "tcp"}, "");
+  biovision_ros_common::ChildProcess xvfb({"Xvfb", display, "-screen", "0", "800x600x24", "-nolisten", "tcp"});
   ros::WallDuration(1.0).sleep();
-  const pid_t rviz = biovision_ros_common::spawnProcess({"rviz", "-d", config, "__name:=rviz_status_test"}, display);
+  biovision_ros_common::ChildProcess rviz({"rviz", "-d", config, "__name:=rviz_status_test"}, display);
 
   ros::Publisher right = nh.advertise<sensor_msgs::Image>("/right_type", 1);
   ros::Publisher wrong = nh.advertise<std_msgs::String>("/wrong_type", 1);
@@ -78,9 +77,7 @@ TEST(RvizDisplayStatus, MissingClassIsAnErrorWrongTopicTypeIsNotOkTheRestOk)
   EXPECT_EQ(levels["Right type"], diagnostic_msgs::DiagnosticStatus::OK);
   EXPECT_EQ(levels["Grid"], diagnostic_msgs::DiagnosticStatus::OK);
   EXPECT_EQ(levels.count("Global Status"), 1u);
-  EXPECT_EQ(waitpid(rviz, nullptr, WNOHANG), 0) << "rviz exited";
-  biovision_ros_common::stopProcess(rviz);
-  biovision_ros_common::stopProcess(xvfb);
+  EXPECT_TRUE(rviz.running()) << "rviz exited";
 }
 
 int main(int argc, char** argv)

@@ -151,4 +151,35 @@ inline void stopProcess(pid_t pid)
   kill(pid, SIGKILL);
   waitpid(pid, nullptr, 0);
 }
+
+/// A child process of the test (spawnProcess), stopped (stopProcess) when it goes out of scope: a failed
+/// ASSERT returns from the test early, and an rviz or Xvfb left running would load the next tests' CPU.
+/// Declare the X server before its clients, so they are stopped first.
+class ChildProcess
+{
+public:
+  ChildProcess(const std::vector<std::string>& args, const std::string& display = "")
+    : pid_(spawnProcess(args, display))
+  {
+  }
+  ~ChildProcess() { stop(); }
+  ChildProcess(const ChildProcess&) = delete;
+  ChildProcess& operator=(const ChildProcess&) = delete;
+
+  /// Whether it has not exited yet (an exited child is reaped here and not signalled later).
+  bool running()
+  {
+    if (pid_ > 0 && waitpid(pid_, nullptr, WNOHANG) == pid_)
+      pid_ = -1;
+    return pid_ > 0;
+  }
+  void stop()
+  {
+    stopProcess(pid_);
+    pid_ = -1;
+  }
+
+private:
+  pid_t pid_;
+};
 }  // namespace biovision_ros_common

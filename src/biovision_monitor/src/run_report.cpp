@@ -110,12 +110,20 @@ std::vector<std::vector<double>> readCsv(const std::string& path, const std::str
   return rows;
 }
 
-std::vector<cv::Point2d> readPanCsv(const std::string& path)
+/// The head's angles over time from pan.csv ("t,pan,tilt", s and rad; older runs wrote "t,pan"), in degrees.
+std::vector<TimeSeriesPlot::Series> readHeadCsv(const std::string& path)
 {
-  std::vector<cv::Point2d> points;
-  for (const auto& r : readCsv(path, "t,pan"))
-    points.emplace_back(r[0], r[1] * 180.0 / M_PI);
-  return points;
+  std::ifstream file(path);
+  std::string header;
+  std::getline(file, header);
+  const bool with_tilt = header == "t,pan,tilt";
+  std::vector<TimeSeriesPlot::Series> series = {{"pan", colours::kSum, {}}};
+  if (with_tilt)
+    series.push_back({"tilt", colours::kRepulsion, {}});
+  for (const auto& r : readCsv(path, with_tilt ? "t,pan,tilt" : "t,pan"))
+    for (size_t i = 0; i < series.size(); ++i)
+      series[i].points.emplace_back(r[0], r[i + 1] * 180.0 / M_PI);
+  return series;
 }
 
 cv::Point2d point(const nlohmann::json& xy)
@@ -257,8 +265,8 @@ std::vector<std::string> RunReport::write() const
       for (const auto& f : fixations.value("fixations", nlohmann::json::array()))
         marks.push_back({f.value("t", NAN), f.value("object", std::string("?"))});
     writePng(dir + "pan.png",
-             TimeSeriesPlot().render(readPanCsv(dir + "pan.csv"), marks, "head pan [deg] over time, fixations marked",
-                                     cv::Size(900, 300)));
+             TimeSeriesPlot().render(readHeadCsv(dir + "pan.csv"), marks,
+                                     "head pan and tilt [deg] over time, fixations marked", cv::Size(900, 300)));
     written.push_back(dir + "pan.png");
   }
   else

@@ -22,6 +22,12 @@ int TimeSeriesPlot::Axes::row(double y) const
 cv::Mat TimeSeriesPlot::render(const std::vector<cv::Point2d>& points, const std::vector<Mark>& marks,
                                const std::string& title, cv::Size size, Axes* axes_out) const
 {
+  return render(std::vector<Series>{{"", colours::kSum, points}}, marks, title, size, axes_out);
+}
+
+cv::Mat TimeSeriesPlot::render(const std::vector<Series>& series, const std::vector<Mark>& marks,
+                               const std::string& title, cv::Size size, Axes* axes_out) const
+{
   size.width = std::max(size.width, 160);
   size.height = std::max(size.height, 120);
   cv::Mat image(size, CV_8UC3, colours::kBackground);
@@ -29,12 +35,13 @@ cv::Mat TimeSeriesPlot::render(const std::vector<cv::Point2d>& points, const std
   axes.area = cv::Rect(48, 24, size.width - 48 - 10, size.height - 24 - 34);
   bool any = false;
   double t0 = INFINITY, t1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
-  for (const auto& p : points)
-    if (std::isfinite(p.x) && std::isfinite(p.y))
-    {
-      any = true;
-      t0 = std::min(t0, p.x), t1 = std::max(t1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
-    }
+  for (const Series& s : series)
+    for (const auto& p : s.points)
+      if (std::isfinite(p.x) && std::isfinite(p.y))
+      {
+        any = true;
+        t0 = std::min(t0, p.x), t1 = std::max(t1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+      }
   if (any)
   {
     const double pad = std::max(1e-6, 0.05 * (y1 - y0));
@@ -63,12 +70,23 @@ cv::Mat TimeSeriesPlot::render(const std::vector<cv::Point2d>& points, const std
                 colours::kAttraction, 1, cv::LINE_AA);
     ++mark_row;
   }
-  std::vector<cv::Point> line;
-  for (const auto& p : points)
-    if (std::isfinite(p.x) && std::isfinite(p.y))
-      line.emplace_back(axes.column(p.x), axes.row(p.y));
-  if (line.size() > 1)
-    cv::polylines(image, line, false, colours::kSum, 1, cv::LINE_AA);
+  int legend_row = 0;
+  for (const Series& s : series)
+  {
+    std::vector<cv::Point> line;
+    for (const auto& p : s.points)
+      if (std::isfinite(p.x) && std::isfinite(p.y))
+        line.emplace_back(axes.column(p.x), axes.row(p.y));
+    if (line.size() > 1)
+      cv::polylines(image, line, false, s.colour, 1, cv::LINE_AA);
+    if (s.label.empty())
+      continue;
+    // Legend: a short stroke in the series' colour and its name, one row each, top right inside the axes.
+    const int y = axes.area.y + 10 + 12 * legend_row++;
+    const int x = axes.area.br().x - 90;
+    cv::line(image, {x, y - 3}, {x + 16, y - 3}, s.colour, 2);
+    cv::putText(image, s.label, {x + 20, y}, cv::FONT_HERSHEY_SIMPLEX, 0.35, s.colour, 1, cv::LINE_AA);
+  }
   if (!any)
     putTextCentred(image, "no samples", size.height / 2, colours::kAxis, 0.5);
   if (axes_out)

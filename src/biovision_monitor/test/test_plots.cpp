@@ -279,7 +279,7 @@ TEST(RunReport, WritesPicturesAndASelfContainedPage)
   char folder[] = "/tmp/run_report_testXXXXXX";
   ASSERT_NE(mkdtemp(folder), nullptr);
   const std::string dir = folder;
-  std::ofstream(dir + "/pan.csv") << "t,pan\n0.0,0.0\n1.0,0.5\n2.0,-0.3\n";
+  std::ofstream(dir + "/pan.csv") << "t,pan,tilt\n0.0,0.0,0.0\n1.0,0.5,0.2\n2.0,-0.3,0.2\n";
   std::ofstream(dir + "/fixations.json") << R"({"fixations": [{"t": 1.0, "object": "mug", "pan_deg": 28.6}]})";
   std::ofstream(dir + "/report.json")
       << R"({"title": "t", "ok": true, "listened_s": 3, "topics": {"a": {"messages": 3, "rate_hz": 1.0}, "b": {"messages": 0, "rate_hz": 0}}})";
@@ -291,6 +291,30 @@ TEST(RunReport, WritesPicturesAndASelfContainedPage)
   EXPECT_NE(text.str().find("data:image/png;base64,iVBOR"), std::string::npos);
   EXPECT_NE(text.str().find("mug"), std::string::npos);
   EXPECT_NE(text.str().find("recognition.json"), std::string::npos) << "missing inputs are named";
+  // pan.png shows pan (kSum: blue) and tilt (kRepulsion: red) curves, anti-aliased, so counted as pixels where
+  // that channel leads the other two; an older run's "t,pan" file gives pan alone.
+  const cv::Mat head = cv::imread(dir + "/pan.png");
+  ASSERT_FALSE(head.empty());
+  auto count = [](const cv::Mat& image, int channel) {
+    int n = 0;
+    for (int y = 0; y < image.rows; ++y)
+      for (int x = 0; x < image.cols; ++x)
+      {
+        const cv::Vec3b p = image.at<cv::Vec3b>(y, x);
+        n += p[channel] - std::max(p[(channel + 1) % 3], p[(channel + 2) % 3]) > 60;
+      }
+    return n;
+  };
+  const int blue = 0, red = 2;
+  EXPECT_GT(count(head, blue), 400) << "the pan curve across the 900 px plot";
+  EXPECT_GT(count(head, red), 400) << "the tilt curve across the 900 px plot";
+  std::ofstream(dir + "/pan.csv") << "t,pan\n0.0,0.0\n1.0,0.5\n2.0,-0.3\n";
+  RunReport(dir).write();
+  const cv::Mat pan_only = cv::imread(dir + "/pan.png");
+  EXPECT_GT(count(pan_only, blue), 400);
+  EXPECT_LT(count(pan_only, red), 20) << "no tilt curve, no tilt legend";
+  std::ofstream(dir + "/pan.csv") << "t,pan,tilt\n0.0,0.0\n";
+  EXPECT_THROW(RunReport(dir).write(), std::runtime_error) << "a row short of the header's columns";
   std::ofstream(dir + "/pan.csv") << "t,pan\nbroken\n";
   EXPECT_THROW(RunReport(dir).write(), std::runtime_error);
   // With latencies the rates chart gets a second column: the p50 bar (attraction green) right of the rates.

@@ -7,8 +7,8 @@ namespace biovision_monitor
 {
 /// A run's pictures and its one-page report (for `make demo` and the *_eval tools): reads what the run
 /// left in its folder and writes, next to it,
-///  - pan.png: the head's pan [deg] over time (pan.csv: "t,pan" in s and rad) with the fixations of
-///    fixations.json marked by object name;
+///  - pan.png: the head's pan and tilt [deg] over time (pan.csv: "t,pan,tilt" in s and rad; a "t,pan" file
+///    of an older run gives pan alone) with the fixations of fixations.json marked by object name;
 ///  - rates.png: each topic's message rate [Hz] from report.json (topic_report), silent topics in red, and
 ///    beside it, when topic_report measured them, the latency since the header stamp (p50 bar, p95 tick)
 ///    [ms] — per stage, the time since the camera frame its output comes from was taken;

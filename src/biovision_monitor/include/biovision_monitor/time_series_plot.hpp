@@ -7,8 +7,8 @@
 
 namespace biovision_monitor
 {
-/// A line plot of one quantity over time with labelled events (e.g. the head's pan over a run with its
-/// fixations marked), for run reports.
+/// A line plot of one or more quantities of one unit over time with labelled events (e.g. the head's pan
+/// and tilt over a run with its fixations marked), for run reports.
 class TimeSeriesPlot
 {
 public:
@@ -26,6 +26,19 @@ public:
     int column(double t) const;
     int row(double y) const;
   };
+
+  /// One curve: its samples (x = time [s], y = value), its colour and its name in the legend.
+  struct Series
+  {
+    std::string label;
+    cv::Scalar colour;
+    std::vector<cv::Point2d> points;
+  };
+
+  /// Renders every series on shared axes (the ranges of all their finite samples) into a CV_8UC3 image of
+  /// `size` (at least 160 x 120), with a legend of the labelled series at the top right; otherwise as below.
+  cv::Mat render(const std::vector<Series>& series, const std::vector<Mark>& marks, const std::string& title,
+                 cv::Size size, Axes* axes = nullptr) const;
 
   /// Renders `points` (x = time [s], y = value; non-finite ones skipped) into a CV_8UC3 image of `size`
   /// (at least 160 x 120): axes with the time and value ranges labelled, `title` at the top, the marks.

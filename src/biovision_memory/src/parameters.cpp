@@ -56,5 +56,6 @@ void ShortTermMemoryParameters::validate() const
   requireRange(o, "obstacle_horizon_time", obstacle_horizon_time, 0.0, 600.0, true);
   requireRange(o, "free_horizon_time", free_horizon_time, 0.0, 600.0, true);
   requireRange(o, "horizon_distance", horizon_distance, 0.0, 100.0, true);
+  requireRange(o, "map_completion_radius", map_completion_radius, 0.0, 10.0);
 }
 }  // namespace biovision_memory

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "biovision_memory/long_term_memory.hpp"
+
 namespace biovision_memory
 {
 ShortTermMemory::ShortTermMemory(const ShortTermMemoryParameters& parameters)
@@ -176,6 +178,46 @@ std::vector<ShortTermMemory::Sector> ShortTermMemory::sectors() const
     if (c.obstacle)
       s.distance = c.point.norm();
   }
+  return out;
+}
+
+std::vector<ShortTermMemory::Sector> ShortTermMemory::sectors(const LongTermMemory& ltm,
+                                                              const Pose2D& map_from_base) const
+{
+  std::vector<Sector> out = sectors();
+  const double radius = parameters_.map_completion_radius;
+  // Beyond 1000 km the cell indices would overflow: such a pose is as good as none.
+  if (!(radius > 0) || !(std::abs(map_from_base.x) < 1e6) || !(std::abs(map_from_base.y) < 1e6) ||
+      !std::isfinite(map_from_base.yaw))
+    return out;
+  const double cell = ltm.parameters().cell_size;
+  const int min_strength = ltm.parameters().rules.initial_strength;
+  const double c = std::cos(map_from_base.yaw), s = std::sin(map_from_base.yaw);
+  // The cells whose centre can lie within the radius: a square of them around the base.
+  const int x0 = ltm.cellIndex(map_from_base.x - radius), x1 = ltm.cellIndex(map_from_base.x + radius);
+  const int y0 = ltm.cellIndex(map_from_base.y - radius), y1 = ltm.cellIndex(map_from_base.y + radius);
+  for (int ix = x0; ix <= x1; ++ix)
+    for (int iy = y0; iy <= y1; ++iy)
+    {
+      const auto it = ltm.cells().find(LongTermMemory::key(ix, iy));
+      if (it == ltm.cells().end() || it->second.strength < min_strength)
+        continue;
+      const double dx = ltm.cellCentre(ix) - map_from_base.x, dy = ltm.cellCentre(iy) - map_from_base.y;
+      const double d = std::hypot(dx, dy);
+      if (d > radius)
+        continue;
+      const int i = sectorOf(std::atan2(-s * dx + c * dy, c * dx + s * dy));
+      if (i < 0)
+        continue;
+      Sector& sector = out[i];
+      const double distance = std::max(0.0, d - cell / 2);
+      if (sector.confidence > 0 && sector.distance <= distance)
+        continue;
+      sector.distance = distance;
+      sector.confidence = 1.0;
+      sector.obstacle = true;
+      sector.age = 0.0;
+    }
   return out;
 }
 }  // namespace biovision_memory

@@ -47,6 +47,7 @@ TEST(ParameterFile, MemoryYamlEqualsTheDefaults)
   EXPECT_DOUBLE_EQ(m["obstacle_horizon_time"].as<double>(), stm.obstacle_horizon_time);
   EXPECT_DOUBLE_EQ(m["free_horizon_time"].as<double>(), stm.free_horizon_time);
   EXPECT_DOUBLE_EQ(m["horizon_distance"].as<double>(), stm.horizon_distance);
+  EXPECT_DOUBLE_EQ(m["map_completion_radius"].as<double>(), stm.map_completion_radius);
 
   const LongTermMemoryParameters ltm;
   const YAML::Node l = y["ltm"];

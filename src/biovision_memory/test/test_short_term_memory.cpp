@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "biovision_memory/long_term_memory.hpp"
 #include "biovision_memory/short_term_memory.hpp"
 #include "synthetic_view.hpp"
 
@@ -139,6 +140,47 @@ TEST(ShortTermMemorySectors, BadInputThrowsAndKeepsTheMemory)
 }
 
 // Odometry: the remembered obstacle is rotated and translated with the base, not re-indexed.
+TEST(ShortTermMemoryMapCompletion, TheMapFillsWhatTheStmDoesNotKnowWithinTheRadius)
+{
+  ShortTermMemory stm;                                             // map_completion_radius 0.6 m
+  stm.update(scanWithObstacle({1.0, 0.0}), Pose2D{0, 0, 0}, 0.0);  // an obstacle 1 m ahead, sector 4
+  biovision_memory::LongTermMemory ltm;
+  // The base stands at (2, 1) in the map facing +y (yaw 90 deg): map point (2 - 0.45, 1 + 0.26) is 0.45 m to
+  // its left and 0.26 m ahead, at bearing atan2(0.45, 0.26) = +60 deg (sector 7: +50..+70 deg).
+  const Pose2D base{2.0, 1.0, 90 * kDeg};
+  ltm.observe(2.0 - 0.45, 1.0 + 0.26, 0.0);
+  ltm.observe(2.0 + 0.7, 1.0, 0.0);          // 0.7 m to the right: beyond the radius
+  ltm.observe(2.0 + 0.05, 1.0 + 0.55, 0.0);  // 0.55 m ahead, nearer than the STM's 1 m: it wins
+  const auto plain = stm.sectors();
+  const auto completed = stm.sectors(ltm, base);
+  ASSERT_EQ(completed.size(), plain.size());
+  const double cell = ltm.parameters().cell_size;
+  const double side = std::hypot(ltm.cellCentre(ltm.cellIndex(2.0 - 0.45)) - 2.0,
+                                 ltm.cellCentre(ltm.cellIndex(1.0 + 0.26)) - 1.0);
+  EXPECT_EQ(plain[7].confidence, 0.0);
+  EXPECT_TRUE(completed[7].obstacle);
+  EXPECT_NEAR(completed[7].distance, side - cell / 2, 1e-9);
+  EXPECT_EQ(completed[7].confidence, 1.0);
+  for (int i : {0, 1, 2, 3})
+    EXPECT_EQ(completed[i].confidence, 0.0) << "sector " << i << ": nothing within 0.6 m on the right";
+  EXPECT_LT(completed[4].distance, 0.6) << "the map's nearer obstacle ahead";
+  // The STM's own obstacle stays where it is nearer than the map's.
+  ltm.clear();
+  ltm.observe(2.0, 1.0 + 0.58, 0.0);
+  stm.update(scanWithObstacle({0.4, 0.0}), Pose2D{0, 0, 0}, 0.1);
+  EXPECT_NEAR(stm.sectors(ltm, base)[4].distance, 0.4, 1e-9);
+  // Radius 0 (the thesis), a non-finite or absurd pose: the STM alone.
+  for (const Pose2D& pose : {Pose2D{NAN, 0, 0}, Pose2D{1e30, 0, 0}, Pose2D{0, 0, INFINITY}})
+    EXPECT_EQ(stm.sectors(ltm, pose)[7].confidence, 0.0);
+  auto parameters = stm.parameters();
+  parameters.map_completion_radius = 0.0;
+  stm.setParameters(parameters);
+  ltm.observe(2.0 - 0.45, 1.0 + 0.26, 0.1);
+  EXPECT_EQ(stm.sectors(ltm, base)[7].confidence, 0.0);
+  parameters.map_completion_radius = -1.0;
+  EXPECT_THROW(stm.setParameters(parameters), std::invalid_argument);
+}
+
 TEST(ShortTermMemoryOdometry, RotationMovesAnObstacleToTheSectorOfItsNewBearing)
 {
   ShortTermMemory stm;

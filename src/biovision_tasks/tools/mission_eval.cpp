@@ -80,9 +80,12 @@ int main(int argc, char** argv)
       .add_option("--new-obstacles", trial.new_obstacles, "obstacles put on the way home")
       ->check(CLI::NonNegativeNumber);
   std::vector<std::string> settings;
-  options.app().add_option("--set", settings,
-                           "a task parameter NAME=VALUE or a base controller parameter base.NAME=VALUE (repeatable), "
-                           "e.g. home_range_cost=0.3 base.blind_speed=0.05");
+  options.app().add_option(
+      "--set", settings,
+      "a task parameter NAME=VALUE, a base controller parameter base.NAME=VALUE or a short-term memory "
+      "parameter stm.obstacle_horizon_time|free_horizon_time|horizon_distance|map_completion_radius=VALUE "
+      "(repeatable), "
+      "e.g. home_range_cost=0.3 base.blind_speed=0.05");
   options.app().add_option("--json", json_path, "write the figures here");
   std::string plots_dir;
   options.app().add_option("--plots", plots_dir,
@@ -108,10 +111,21 @@ int main(int argc, char** argv)
         base.*named.field = std::stod(s.substr(eq + 1));
         known = true;
       }
+    const std::pair<const char*, double biovision_memory::ShortTermMemoryParameters::*> stm_fields[] = {
+        {"stm.obstacle_horizon_time", &biovision_memory::ShortTermMemoryParameters::obstacle_horizon_time},
+        {"stm.free_horizon_time", &biovision_memory::ShortTermMemoryParameters::free_horizon_time},
+        {"stm.horizon_distance", &biovision_memory::ShortTermMemoryParameters::horizon_distance},
+        {"stm.map_completion_radius", &biovision_memory::ShortTermMemoryParameters::map_completion_radius}};
+    for (const auto& [stm_name, field] : stm_fields)
+      if (eq != std::string::npos && name == stm_name)
+      {
+        trial.stm.*field = std::stod(s.substr(eq + 1));
+        known = true;
+      }
     if (!known)
     {
-      std::cerr << "mission_eval: --set " << s << ": not NAME=VALUE of a task parameter or base.NAME=VALUE of a base "
-                << "controller parameter\n";
+      std::cerr << "mission_eval: --set " << s << ": not NAME=VALUE of a task parameter, base.NAME=VALUE of a base "
+                << "controller parameter or stm.NAME=VALUE of a short-term memory horizon\n";
       return 2;
     }
   }
@@ -119,6 +133,7 @@ int main(int argc, char** argv)
   {
     tasks.validate();
     base.validate();
+    trial.stm.validate();
   }
   catch (const std::invalid_argument& e)
   {
@@ -161,6 +176,25 @@ int main(int argc, char** argv)
     j["ltm_cells"] = r.ltm_cells;
     j["ltm_precision"] = r.ltm_precision;
     j["outcome"] = r.outcome;
+    j["collision_details"] = nlohmann::ordered_json::array();
+    for (const MissionCollision& c : r.collision_details)
+      j["collision_details"].push_back(
+          {{"time_s", c.time},
+           {"x_m", c.position.x},
+           {"y_m", c.position.y},
+           {"object", c.object},
+           {"task", c.task},
+           {"base_status", c.base_status},
+           {"linear_m_s", c.linear},
+           {"angular_rad_s", c.angular},
+           // JSON has no infinity: a corridor with no known obstacle is null.
+           {"front_clearance_m",
+            std::isfinite(c.front_clearance) ? nlohmann::ordered_json(c.front_clearance) : nlohmann::ordered_json()},
+           {"pan_rad", c.pan},
+           {"contact_bearing_rad", c.contact_bearing},
+           {"stm_distance_m",
+            std::isfinite(c.stm_distance) ? nlohmann::ordered_json(c.stm_distance) : nlohmann::ordered_json()},
+           {"stm_confidence", c.stm_confidence}});
     per_trial.push_back(j);
     if (!plots_dir.empty())
       pictures.push_back(writeTrialPicture(plots_dir, r));
@@ -191,8 +225,12 @@ int main(int argc, char** argv)
       "1.5/2.0/2.5/3.0 m: 38/44/45/45), the base's blind_speed on seeds 101-130 (no limit: 8 collisions, 0.05 "
       "m/s: 0 with boredom-only exploration) and 101-160, the trapped excursion's blocked disc (0.7 m towards the "
       "waypoint: 52/60 completed; 0.5/0.9 m: 50/50) on 101-160, the base's other parameters on navigation_eval's seeds "
-      "101-120; "
-      "nothing on these seeds. Once the "
+      "101-120, the STM's map_completion_radius (the base's sectors completed by the LTM within it; every "
+      "collision of seeds 101-300 was at the base's side, where the STM did not know the obstacle) on seeds "
+      "101-500 (completed without a collision on 101-300 + 301-500, collisions: 0 m: 142+150, 88; 0.5 m: "
+      "160+148, 1; 0.6 m: 164+163, 1; 0.7 m: 156+161, 1; 0.8 m: 156+162, 2); nothing on these seeds. Each trial's "
+      "collision_details say what was hit, "
+      "during which task, where on the base's rim and what the sectors held there. Once the "
       "target is found, up to --new-obstacles boxes are put "
       "on the straight way home. STM and LTM are biovision_memory's, fed with ground-truth ranges across the "
       "camera's view (not stereo); recognition is an oracle (target centre in view within 3 m and not hidden, "

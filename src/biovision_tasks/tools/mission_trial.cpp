@@ -140,7 +140,7 @@ MissionTrialResult runMissionTrial(unsigned seed, const TaskParameters& tasks,
   biovision_sim::Servo pan(head.pan_lower, head.pan_upper, o.servo_speed, 0.0);
   HeadAttractor head_controller(head);
   BaseAttractor base_controller(base);
-  biovision_memory::ShortTermMemory stm;
+  biovision_memory::ShortTermMemory stm(o.stm);
   biovision_memory::LongTermMemoryParameters ltm_parameters;
   ltm_parameters.min_points = 1;  // one range per degree, not thousands of disparity pixels
   biovision_memory::LongTermMemory ltm(ltm_parameters);
@@ -156,6 +156,7 @@ MissionTrialResult runMissionTrial(unsigned seed, const TaskParameters& tasks,
   MotorCommand command, last_sent;  // last_sent: the base command the controller last got as a new goal
   last_sent.base = MotorCommand::Base::Stop;
   bool trapped = false, in_contact = false;
+  BaseAttractor::Output last_base;
   result.min_clearance = plan->clearance(drive.x(), drive.y()) - limits.radius;
   const long steps = static_cast<long>(std::ceil(o.timeout * o.physics_rate));
   long step = 0;
@@ -215,7 +216,7 @@ MissionTrialResult runMissionTrial(unsigned seed, const TaskParameters& tasks,
         pan.command(h.command);
       // The base: the task's goal, turn or stop.
       std::vector<BaseAttractor::Sector> sectors;
-      for (const auto& s : stm.sectors())
+      for (const auto& s : stm.sectors(ltm, pose))
         sectors.push_back({s.centre, s.distance, s.confidence, BaseAttractor::Sector().width});
       if (command.base == MotorCommand::Base::Stop)
       {
@@ -243,6 +244,7 @@ MissionTrialResult runMissionTrial(unsigned seed, const TaskParameters& tasks,
         const BaseAttractor::Output out = base_controller.update(sectors, bearing, distance, t, control_dt);
         trapped = out.status == BaseAttractor::Status::kTrapped;
         drive.command(out.linear, out.angular);
+        last_base = out;
       }
     }
     pan.step(dt);
@@ -252,6 +254,31 @@ MissionTrialResult runMissionTrial(unsigned seed, const TaskParameters& tasks,
     {
       ++result.collisions;
       result.collision_positions.emplace_back(drive.x(), drive.y());
+      MissionCollision c;
+      c.time = step * dt;
+      c.position = {drive.x(), drive.y()};
+      c.object = drive.collidedWith();
+      c.task = manager.status().macro_task;
+      c.base_status = command.base == MotorCommand::Base::Stop ? "stop" : BaseAttractor::name(last_base.status);
+      c.linear = last_base.linear;
+      c.angular = last_base.angular;
+      c.front_clearance = last_base.front_clearance;
+      c.pan = pan.position();
+      // Where on the base's rim the contact is: the rim point nearest a footprint (2-degree steps).
+      double nearest = INFINITY;
+      for (int k = -90; k < 90; ++k)
+      {
+        const double a = k * M_PI / 90;
+        const double d = plan->clearance(drive.x() + (limits.radius + 0.02) * std::cos(drive.yaw() + a),
+                                         drive.y() + (limits.radius + 0.02) * std::sin(drive.yaw() + a));
+        if (d < nearest)
+          nearest = d, c.contact_bearing = a;
+      }
+      c.stm_distance = INFINITY;
+      for (const auto& sector : stm.sectors(ltm, pose))
+        if (std::abs(wrap(sector.centre - c.contact_bearing)) <= BaseAttractor::Sector().width / 2)
+          c.stm_distance = sector.distance, c.stm_confidence = sector.confidence;
+      result.collision_details.push_back(c);
     }
     if (result.path.empty() || std::hypot(drive.x() - result.path.back().x, drive.y() - result.path.back().y) > 0.05)
       result.path.emplace_back(drive.x(), drive.y());

@@ -5,6 +5,7 @@
 
 #include "biovision_attractor/base_attractor_parameters.hpp"
 #include "biovision_attractor/head_attractor_parameters.hpp"
+#include "biovision_memory/short_term_memory_parameters.hpp"
 #include "biovision_tasks/occupancy_map.hpp"
 #include "biovision_tasks/task_parameters.hpp"
 
@@ -34,6 +35,24 @@ struct MissionTrialOptions
   double position_noise = 0.1;     ///< [m] standard deviation of the recognised position
   int new_obstacles = 2;           ///< put on the way home once the target is found
   double servo_speed = 3.0;        ///< [rad/s]
+  biovision_memory::ShortTermMemoryParameters stm;  ///< the STM's (mission_eval --set stm.NAME=VALUE)
+};
+
+/// One contact of the base with the world, and what the loop believed at that moment (mission_eval's JSON).
+struct MissionCollision
+{
+  double time = 0;             ///< [s]
+  cv::Point2d position;        ///< [m] map frame
+  std::string object;          ///< the footprint hit (the world object's label)
+  std::string task;            ///< the macro-task then driving
+  std::string base_status;     ///< BaseAttractor::name of the last control step
+  double linear = 0;           ///< [m/s] commanded at the last control step
+  double angular = 0;          ///< [rad/s] commanded at the last control step
+  double front_clearance = 0;  ///< [m] the STM's clearance in the swept corridor ahead (+Inf: none known)
+  double pan = 0;              ///< [rad] where the camera looked
+  double contact_bearing = 0;  ///< [rad, base_link, + = left] of the nearest footprint point at the contact
+  double stm_distance = 0;     ///< [m] the STM sector holding that bearing: its obstacle distance (+Inf: none)
+  double stm_confidence = 0;   ///< [0, 1] that sector's confidence (0: unknown)
 };
 
 struct MissionTrialResult
@@ -57,6 +76,7 @@ struct MissionTrialResult
   std::vector<cv::Point2d> path;  ///< the base's positions, every 5 cm
   cv::Point2d home, target, target_found{NAN, NAN};
   std::vector<cv::Point2d> new_obstacle_positions, collision_positions;
+  std::vector<MissionCollision> collision_details;
   OccupancyMap ltm;  ///< the LTM at the end, strength 0..100
 };
 

@@ -13,6 +13,8 @@
 
 namespace biovision_memory
 {
+class LongTermMemory;
+
 /// The egocentric short-term memory of thesis §5.3.1: 9 sectors of 20° over −90°…+90° around the base
 /// (base_link, + = left), each holding the nearest obstacle seen there.
 ///
@@ -66,6 +68,12 @@ public:
 
   /// The sectors at the time of the last moveTo()/update(), right-most (−90°) first.
   std::vector<Sector> sectors() const;
+  /// The same, completed by the long-term map (beyond the thesis; what memory/stm publishes): every LTM cell
+  /// of at least the initial strength whose centre lies within parameters().map_completion_radius [m] of the
+  /// base is an obstacle of the sector holding its bearing, at its distance less half a cell, where the
+  /// sector is unknown or holds nothing nearer (confidence 1, age 0). `map_from_base`: base_link in the
+  /// LTM's frame. A non-finite pose or a radius of 0 gives sectors().
+  std::vector<Sector> sectors(const LongTermMemory& ltm, const Pose2D& map_from_base) const;
   /// The scan of the last update(disparity, …) (empty before one).
   const ViewScan& lastScan() const { return last_scan_; }
   /// Sector index of a bearing [rad] in base_link, −1 outside the sectors.

@@ -21,6 +21,13 @@ struct ShortTermMemoryParameters
   double free_horizon_time = 3.0;
   /// Anything not seen again is dropped after the base moved this far [m], (0, 100] (odometry drifts).
   double horizon_distance = 2.0;
+  /// Beyond the thesis: the sectors the base reads (memory/stm) also hold the long-term map's obstacles
+  /// within this radius [m] of the base, [0, 10] (0: the STM alone, as the thesis). The camera sees ±21°
+  /// ahead, so what the base passes leaves the view at its side, where the STM forgets it or never had it;
+  /// every collision of mission_eval's tune rooms 101-300 was there (46 in 200 missions). Chosen on rooms
+  /// 101-500 among 0.5/0.6/0.7/0.8 m (most missions completed without a collision: 327 of 400 against 292
+  /// with 0; collisions 88 → 1; docs/benchmarks.md, mission). ShortTermMemory::sectors(ltm, …) applies it.
+  double map_completion_radius = 0.6;
 
   /// Throws std::invalid_argument naming the offending field and its range.
   void validate() const;

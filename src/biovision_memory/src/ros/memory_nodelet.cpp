@@ -87,6 +87,7 @@ void MemoryNodelet::readParameters(const ros::NodeHandle& pnh, Settings& s, Shor
   param(pnh, "stm/obstacle_horizon_time", stm.obstacle_horizon_time);
   param(pnh, "stm/free_horizon_time", stm.free_horizon_time);
   param(pnh, "stm/horizon_distance", stm.horizon_distance);
+  param(pnh, "stm/map_completion_radius", stm.map_completion_radius);
   stm.validate();
 
   ReinforcementRules rules;
@@ -276,6 +277,7 @@ void MemoryNodelet::onDisparity(const stereo_msgs::DisparityImageConstPtr& msg)
     try
     {
       stm_->update(disparity, camera, base_from_camera, odom_pose, stamp.toSec());
+      odom_pose_ = odom_pose;
     }
     catch (const std::invalid_argument& e)
     {
@@ -380,6 +382,8 @@ void MemoryNodelet::onTimer(const ros::WallTimerEvent&)
         if (lookup(settings_.odom_frame, settings_.base_frame, ros::Time(0), odom_from_base, error))
           pose = planar(odom_from_base);
         stm_->moveTo(pose, now.toSec());
+        if (std::isfinite(pose.x))
+          odom_pose_ = pose;
       }
     }
     ltm_->forget(now.toSec());
@@ -435,7 +439,8 @@ void MemoryNodelet::publishStm(const ros::Time& stamp)
   double width, range;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    sectors = stm_->sectors();
+    // The base reads these: the STM completed by the long-term map around the base (map_completion_radius).
+    sectors = stm_->sectors(*ltm_, corrector_->mapFromOdom().compose(odom_pose_));
     width = stm_->parameters().sector_width;
     range = stm_->parameters().scan.max_range;
   }

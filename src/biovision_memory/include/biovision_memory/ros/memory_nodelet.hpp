@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -96,6 +97,7 @@ private:
   std::string last_save_error_;
   ros::Time last_disparity_, last_ltm_update_, last_publish_;
   ros::WallTime last_disparity_wall_, last_save_;
+  Pose2D odom_pose_{NAN, NAN, NAN};  // base_link in odom at the last STM move (NaN: none yet)
   bool have_camera_info_ = false;
   sensor_msgs::CameraInfo camera_info_;
   unsigned frames_ = 0, tf_failures_ = 0, sightings_ = 0, landmark_sightings_ = 0;

@@ -83,44 +83,77 @@ void writePng(const std::string& path, const cv::Mat& image)
   biovision_common::writeFileAtomically(path, png.data(), png.size());
 }
 
-/// The rows of a CSV file with a header line and `columns` numbers per row.
-std::vector<std::vector<double>> readCsv(const std::string& path, const std::string& header)
+// One CSV line without its CR (a file written on Windows) and surrounding blanks.
+std::string trimmed(std::string text)
+{
+  const auto first = text.find_first_not_of(" \t\r");
+  const auto last = text.find_last_not_of(" \t\r");
+  return first == std::string::npos ? std::string() : text.substr(first, last - first + 1);
+}
+
+/// The rows of a CSV file whose header line names its columns: the values of `columns`, in that order, from
+/// each row; a column named in `optional` may be missing from the file (its values are then NaN). Throws
+/// std::runtime_error naming the file — and the line — when it cannot be read, its header lacks a required
+/// column or names one twice, or a row is not exactly one number per header column.
+std::vector<std::vector<double>> readCsv(const std::string& path, const std::vector<std::string>& columns,
+                                         const std::vector<std::string>& optional = {})
 {
   std::ifstream f(path);
   std::string line;
+  if (!f || !std::getline(f, line))
+    throw std::runtime_error(path + ": cannot be read");
+  if (line.rfind("\xEF\xBB\xBF", 0) == 0)
+    line.erase(0, 3);  // a UTF-8 byte order mark
+  std::vector<std::string> header;
+  std::istringstream names(line);
+  for (std::string name; std::getline(names, name, ',');)
+    header.push_back(trimmed(name));
+  std::vector<int> index;  // the file's column of each of `columns`, -1 when absent
+  for (const std::string& c : columns)
+  {
+    const auto n = std::count(header.begin(), header.end(), c);
+    const bool may_miss = std::find(optional.begin(), optional.end(), c) != optional.end();
+    if (n > 1 || (n == 0 && !may_miss))
+      throw std::runtime_error(path + ":1: the header \"" + trimmed(line) + "\" must name the column \"" + c +
+                               "\" once");
+    index.push_back(n ? static_cast<int>(std::find(header.begin(), header.end(), c) - header.begin()) : -1);
+  }
   std::vector<std::vector<double>> rows;
-  const size_t columns = std::count(header.begin(), header.end(), ',') + 1;
-  std::getline(f, line);  // header
   for (int n = 2; std::getline(f, line); ++n)
   {
+    line = trimmed(line);
     if (line.empty())
       continue;
     std::istringstream s(line);
-    std::vector<double> row(columns);
+    std::vector<double> values(header.size());
     bool ok = true;
-    for (size_t c = 0; c < columns && ok; ++c)
+    for (size_t c = 0; c < header.size() && ok; ++c)
     {
       char comma = ',';
-      ok = (c == 0 || (s >> comma && comma == ',')) && static_cast<bool>(s >> row[c]);
+      ok = (c == 0 || (s >> comma && comma == ',')) && static_cast<bool>(s >> values[c]);
     }
+    ok = ok && (s >> std::ws).eof();  // nothing after the last column: no extra column, no "0.2xyz"
     if (!ok)
-      throw std::runtime_error(path + ":" + std::to_string(n) + ": expected \"" + header + "\", got \"" + line + "\"");
+      throw std::runtime_error(path + ":" + std::to_string(n) + ": expected " + std::to_string(header.size()) +
+                               " numbers (" + trimmed(names.str()) + "), got \"" + line + "\"");
+    std::vector<double> row;
+    for (int k : index)
+      row.push_back(k >= 0 ? values[k] : NAN);
     rows.push_back(std::move(row));
   }
   return rows;
 }
 
-/// The head's angles over time from pan.csv ("t,pan,tilt", s and rad; older runs wrote "t,pan"), in degrees.
+/// The head's angles over time from pan.csv (columns t, pan, tilt in s and rad; older runs wrote no tilt), in
+/// degrees.
 std::vector<TimeSeriesPlot::Series> readHeadCsv(const std::string& path)
 {
-  std::ifstream file(path);
-  std::string header;
-  std::getline(file, header);
-  const bool with_tilt = header == "t,pan,tilt";
+  const auto rows = readCsv(path, {"t", "pan", "tilt"}, {"tilt"});
+  const bool with_tilt = !rows.empty() && !std::isnan(rows[0][2]);
   std::vector<TimeSeriesPlot::Series> series = {{"pan", colours::kSum, {}}};
   if (with_tilt)
     series.push_back({"tilt", colours::kRepulsion, {}});
-  for (const auto& r : readCsv(path, with_tilt ? "t,pan,tilt" : "t,pan"))
+  for (const auto& r : rows)
     for (size_t i = 0; i < series.size(); ++i)
       series[i].points.emplace_back(r[0], r[i + 1] * 180.0 / M_PI);
   return series;
@@ -138,7 +171,7 @@ cv::Point2d point(const nlohmann::json& xy)
 cv::Mat pathPicture(const std::string& dir, const nlohmann::json& mission)
 {
   std::vector<cv::Point2d> path;
-  for (const auto& r : readCsv(dir + "path.csv", "t,x,y"))
+  for (const auto& r : readCsv(dir + "path.csv", {"t", "x", "y"}))
     path.emplace_back(r[1], r[2]);
   biovision_common::GridView grid;
   cv::Point2d origin(0, 0);

@@ -313,8 +313,27 @@ TEST(RunReport, WritesPicturesAndASelfContainedPage)
   const cv::Mat pan_only = cv::imread(dir + "/pan.png");
   EXPECT_GT(count(pan_only, blue), 400);
   EXPECT_LT(count(pan_only, red), 20) << "no tilt curve, no tilt legend";
-  std::ofstream(dir + "/pan.csv") << "t,pan,tilt\n0.0,0.0\n";
-  EXPECT_THROW(RunReport(dir).write(), std::runtime_error) << "a row short of the header's columns";
+  // Columns are found by name: CR line ends, a byte order mark, blanks and another order read the same.
+  std::ofstream(dir + "/pan.csv") << "\xEF\xBB\xBFt, tilt ,pan\r\n0.0,0.0,0.0\r\n1.0,0.2,0.5\r\n2.0,0.2,-0.3\r\n";
+  RunReport(dir).write();
+  const cv::Mat reordered = cv::imread(dir + "/pan.png");
+  EXPECT_GT(count(reordered, red), 400);
+  EXPECT_EQ(cv::norm(reordered, head, cv::NORM_INF), 0) << "the same picture as from t,pan,tilt";
+  // Refused, naming the file: a short row, an extra column, trailing junk, no header, a header without pan.
+  for (const char* text : {"t,pan,tilt\n0.0,0.0\n", "t,pan,tilt\n0,0,0,0\n", "t,pan,tilt\n0,0.2xyz,0\n",
+                           "0,0.1,0.2\n1,0.1,0.2\n", "t,tilt\n0,0\n"})
+  {
+    std::ofstream(dir + "/pan.csv") << text;
+    try
+    {
+      RunReport(dir).write();
+      ADD_FAILURE() << "accepted: " << text;
+    }
+    catch (const std::runtime_error& e)
+    {
+      EXPECT_NE(std::string(e.what()).find("pan.csv"), std::string::npos) << e.what();
+    }
+  }
   std::ofstream(dir + "/pan.csv") << "t,pan\nbroken\n";
   EXPECT_THROW(RunReport(dir).write(), std::runtime_error);
   // With latencies the rates chart gets a second column: the p50 bar (attraction green) right of the rates.

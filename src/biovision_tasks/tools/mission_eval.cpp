@@ -1,5 +1,6 @@
 // mission_eval: the thesis's ch. 5 experiment measured — find an object while building the map, then return
 // home past new obstacles — over N seeded room worlds, without ROS (mission_trial.cpp). Issue #17.
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -98,17 +99,28 @@ int main(int argc, char** argv)
   {
     const auto eq = s.find('=');
     const std::string name = s.substr(0, eq);
+    // The whole value must be one number ("abc", "", "0.5abc" and out-of-range values are refused).
+    double value = NAN;
+    if (eq != std::string::npos)
+    {
+      std::istringstream text(s.substr(eq + 1));
+      if (!(text >> value) || !(text >> std::ws).eof())
+      {
+        std::cerr << "mission_eval: --set " << s << ": the value is not a number\n";
+        return 2;
+      }
+    }
     bool known = false;
     for (const auto& [task_name, field] : TaskParameters::namedDoubles())
       if (eq != std::string::npos && name == task_name)
       {
-        tasks.*field = std::stod(s.substr(eq + 1));
+        tasks.*field = value;
         known = true;
       }
     for (const auto& named : biovision_attractor::BaseAttractorParameters::namedDoubles())
       if (eq != std::string::npos && name == std::string("base.") + named.name)
       {
-        base.*named.field = std::stod(s.substr(eq + 1));
+        base.*named.field = value;
         known = true;
       }
     const std::pair<const char*, double biovision_memory::ShortTermMemoryParameters::*> stm_fields[] = {
@@ -119,13 +131,13 @@ int main(int argc, char** argv)
     for (const auto& [stm_name, field] : stm_fields)
       if (eq != std::string::npos && name == stm_name)
       {
-        trial.stm.*field = std::stod(s.substr(eq + 1));
+        trial.stm.*field = value;
         known = true;
       }
     if (!known)
     {
       std::cerr << "mission_eval: --set " << s << ": not NAME=VALUE of a task parameter, base.NAME=VALUE of a base "
-                << "controller parameter or stm.NAME=VALUE of a short-term memory horizon\n";
+                << "controller parameter or stm.NAME=VALUE of a short-term memory parameter\n";
       return 2;
     }
   }

@@ -87,7 +87,9 @@ public:
 
   static std::int64_t key(int ix, int iy)
   {
-    return (static_cast<std::int64_t>(ix) << 32) | static_cast<std::uint32_t>(iy);
+    // Shifted as unsigned: a negative index shifted as signed is undefined behaviour (the same bits result).
+    return static_cast<std::int64_t>((static_cast<std::uint64_t>(static_cast<std::uint32_t>(ix)) << 32) |
+                                     static_cast<std::uint32_t>(iy));
   }
 
 private:

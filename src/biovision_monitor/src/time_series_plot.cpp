@@ -70,7 +70,7 @@ cv::Mat TimeSeriesPlot::render(const std::vector<Series>& series, const std::vec
                 colours::kAttraction, 1, cv::LINE_AA);
     ++mark_row;
   }
-  int legend_row = 0;
+  int legend_right = size.width - 10;  // the legend fills the title's row from the right, clear of the marks' labels
   for (const Series& s : series)
   {
     std::vector<cv::Point> line;
@@ -81,11 +81,13 @@ cv::Mat TimeSeriesPlot::render(const std::vector<Series>& series, const std::vec
       cv::polylines(image, line, false, s.colour, 1, cv::LINE_AA);
     if (s.label.empty())
       continue;
-    // Legend: a short stroke in the series' colour and its name, one row each, top right inside the axes.
-    const int y = axes.area.y + 10 + 12 * legend_row++;
-    const int x = axes.area.br().x - 90;
-    cv::line(image, {x, y - 3}, {x + 16, y - 3}, s.colour, 2);
-    cv::putText(image, s.label, {x + 20, y}, cv::FONT_HERSHEY_SIMPLEX, 0.35, s.colour, 1, cv::LINE_AA);
+    // Legend: a short stroke in the series' colour and its name.
+    int baseline = 0;
+    const int text = cv::getTextSize(s.label, cv::FONT_HERSHEY_SIMPLEX, 0.4, 1, &baseline).width;
+    const int x = legend_right - text - 20;
+    cv::line(image, {x, 12}, {x + 16, 12}, s.colour, 2);
+    cv::putText(image, s.label, {x + 20, 16}, cv::FONT_HERSHEY_SIMPLEX, 0.4, s.colour, 1, cv::LINE_AA);
+    legend_right = x - 12;
   }
   if (!any)
     putTextCentred(image, "no samples", size.height / 2, colours::kAxis, 0.5);

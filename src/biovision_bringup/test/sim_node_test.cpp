@@ -1,6 +1,6 @@
-// Integration test of the simulator: topics at their rates (in sim time, over 20 frames: 2 s of camera time), the rectified stereo pair
-// from the upstream image_proc nodelets, a tf tree that matches the camera model, the head following a
-// command within its limits, the base following cmd_vel.
+// Integration test of the simulator: topics at their rates (in sim time, over 20 frames: 2 s of camera
+// time), the rectified stereo pair from the upstream image_proc nodelets, a tf tree that matches the camera
+// model, the head following a command within its limits, the base following cmd_vel.
 #include <atomic>
 #include <cmath>
 #include <map>

@@ -139,7 +139,6 @@ TEST(ShortTermMemorySectors, BadInputThrowsAndKeepsTheMemory)
   EXPECT_NEAR(stm.sectors()[4].distance, 1.0, 1e-9);
 }
 
-// Odometry: the remembered obstacle is rotated and translated with the base, not re-indexed.
 TEST(ShortTermMemoryMapCompletion, TheMapFillsWhatTheStmDoesNotKnowWithinTheRadius)
 {
   ShortTermMemory stm;                                             // map_completion_radius 0.6 m
@@ -181,6 +180,7 @@ TEST(ShortTermMemoryMapCompletion, TheMapFillsWhatTheStmDoesNotKnowWithinTheRadi
   EXPECT_THROW(stm.setParameters(parameters), std::invalid_argument);
 }
 
+// Odometry: the remembered obstacle is rotated and translated with the base, not re-indexed.
 TEST(ShortTermMemoryOdometry, RotationMovesAnObstacleToTheSectorOfItsNewBearing)
 {
   ShortTermMemory stm;

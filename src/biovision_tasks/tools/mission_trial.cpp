@@ -275,9 +275,12 @@ MissionTrialResult runMissionTrial(unsigned seed, const TaskParameters& tasks,
           nearest = d, c.contact_bearing = a;
       }
       c.stm_distance = INFINITY;
-      for (const auto& sector : stm.sectors(ltm, pose))
-        if (std::abs(wrap(sector.centre - c.contact_bearing)) <= BaseAttractor::Sector().width / 2)
-          c.stm_distance = sector.distance, c.stm_confidence = sector.confidence;
+      if (const int i = stm.sectorOf(c.contact_bearing); i >= 0)
+      {
+        const auto sector = stm.sectors(ltm, pose)[i];
+        c.stm_distance = sector.distance;
+        c.stm_confidence = sector.confidence;
+      }
       result.collision_details.push_back(c);
     }
     if (result.path.empty() || std::hypot(drive.x() - result.path.back().x, drive.y() - result.path.back().y) > 0.05)

@@ -547,12 +547,14 @@ int main(int argc, char** argv)
   cv::setNumThreads(opencv_threads);
   ros::NodeHandle nh;
   // This process is the nodelet manager: loop_bench.launch's `nodelet load ... /loop_bench` lands here.
+  // The bag is read before the spinner serves the launch file's `nodelet load` calls: rosbag::Bag's
+  // constructor loads its encryptor plugin through class_loader, which is not thread-safe against the
+  // nodelet loads (1 in 3 starts here died in class_loader::impl::unloadLibrary with SIGSEGV).
+  std::vector<tf2_msgs::TFMessageConstPtr> statics;
+  std::vector<Frame> frames = readFrames(bag_path, loops, statics);
   nodelet::Loader manager(ros::NodeHandle("~"));
   ros::AsyncSpinner spinner(2);
   spinner.start();
-
-  std::vector<tf2_msgs::TFMessageConstPtr> statics;
-  std::vector<Frame> frames = readFrames(bag_path, loops, statics);
   if (static_cast<int>(frames.size()) <= warmup)
   {
     std::cerr << "loop_bench: " << frames.size() << " frames, not more than --warmup " << warmup << "\n";

@@ -33,6 +33,8 @@ PACKAGES=(
   opencv-doc
   # libraries the ROS-free cores use
   libopencv-dev libopencv-contrib-dev libeigen3-dev liblinear-dev libyaml-cpp-dev
+  # biovision_v1: the Gabor bank's DFTs (FFTW3, 2-4x cv::dft's speed at the bank's sizes)
+  libfftw3-dev
   # biovision_common: tool options, JSON, CRC
   libcli11-dev nlohmann-json3-dev zlib1g-dev
   # biovision_memory: the memory database (and the sqlite3 shell to inspect it)

@@ -7,6 +7,7 @@
 #include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "biovision_v1/fourier_transform.hpp"
 #include "biovision_v1/gabor_kernel.hpp"
 
 namespace biovision_v1
@@ -65,11 +66,10 @@ SimpleCellBank::SimpleCellBank(const GaborParameters& parameters) : parameters_(
   parameters_.validate();
 }
 
-void SimpleCellBank::plan(const cv::Size& image_size)
+void SimpleCellBank::plan(const cv::Size& image_size, bool odd_pairs)
 {
-  if (image_size == planned_size_)
-    return;
-  plans_.clear();
+  ++uses_;
+  std::vector<ScalePlan> plans;
   const int n_scales = static_cast<int>(parameters_.wavelengths.size());
   // Own padding and DFT size of each scale.
   for (double wavelength : parameters_.wavelengths)
@@ -82,15 +82,15 @@ void SimpleCellBank::plan(const cv::Size& image_size)
     // The grid DFT (padded / d) gets an efficient size; the full-resolution DFT is d times that.
     p.padded.width = d * cv::getOptimalDFTSize((image_size.width + 2 * p.padding + d - 1) / d);
     p.padded.height = d * cv::getOptimalDFTSize((image_size.height + 2 * p.padding + d - 1) / d);
-    p.spectrum_source = static_cast<int>(plans_.size());
-    plans_.push_back(std::move(p));
+    p.spectrum_source = static_cast<int>(plans.size());
+    plans.push_back(std::move(p));
   }
   // A scale reuses the image spectrum of the widest-padded (coarsest) scale when that costs less in
   // larger inverse DFTs than its own forward DFT would: true for coarse scales, whose grids are tiny.
-  const ScalePlan& widest = plans_.back();
+  const ScalePlan& widest = plans.back();
   for (int s = 0; s + 1 < n_scales; ++s)
   {
-    ScalePlan& p = plans_[s];
+    ScalePlan& p = plans[s];
     const int d = p.decimation;
     if (widest.padded.width % d || widest.padded.height % d || widest.padding % d)
       continue;
@@ -102,66 +102,101 @@ void SimpleCellBank::plan(const cv::Size& image_size)
       p.spectrum_source = n_scales - 1;
     }
   }
-  for (ScalePlan& p : plans_)
+  // Everything below depends on the image size only through these DFT sizes.
+  std::vector<cv::Size> key;
+  for (const ScalePlan& p : plans)
+    key.push_back(p.padded);
+
+  auto hit = std::find_if(cache_.begin(), cache_.end(), [&key](const PlanSet& set) { return set.key == key; });
+  if (hit == cache_.end())
   {
-    const int d = p.decimation;
-    const cv::Size grid(p.padded.width / d, p.padded.height / d);
-    for (int i = 0; i < parameters_.orientations; ++i)
-    {
-      const GaborKernel kernel(p.wavelength, parameters_.theta(i), parameters_);
-      const int r = kernel.radius();
-      // Flipped kernel h(u) = k(-u), wrapped around the origin: convolving with h correlates with k.
-      cv::Mat h(p.padded, CV_32FC2, cv::Scalar::all(0));
-      for (int y = -r; y <= r; ++y)
-        for (int x = -r; x <= r; ++x)
-        {
-          const int wy = (-y + p.padded.height) % p.padded.height;
-          const int wx = (-x + p.padded.width) % p.padded.width;
-          h.at<cv::Vec2f>(wy, wx) = cv::Vec2f(kernel.even().at<float>(y + r, x + r),
-                                              kernel.odd().at<float>(y + r, x + r));
-        }
-      cv::Mat spectrum;
-      cv::dft(h, spectrum, cv::DFT_COMPLEX_OUTPUT);
-      spectrum *= 1.0 / (d * d);
-      p.runs.push_back(supportRuns(spectrum, grid));
-      if (d == 1)
-      {
-        // Odd-only pairs: orientation i goes to the real part, i+1 to the imaginary part.
-        std::vector<cv::Mat> parts;
-        cv::split(h, parts);
-        if (i % 2 == 0)
-          p.odd_pair_spectra.push_back(cv::Mat(p.padded, CV_32FC2, cv::Scalar::all(0)));
-        cv::Mat pair_parts[2];
-        cv::split(p.odd_pair_spectra.back(), pair_parts);
-        parts[1].copyTo(pair_parts[i % 2]);
-        cv::merge(pair_parts, 2, p.odd_pair_spectra.back());
-      }
-    }
-    // The pairs were filled in the spatial domain; transform them once complete.
-    for (cv::Mat& pair : p.odd_pair_spectra)
-      cv::dft(pair, pair, cv::DFT_COMPLEX_OUTPUT);
+    if (static_cast<int>(cache_.size()) >= kPlanCacheSize)
+      cache_.erase(std::min_element(cache_.begin(), cache_.end(),
+                                    [](const PlanSet& a, const PlanSet& b) { return a.last_use < b.last_use; }));
+    for (ScalePlan& p : plans)
+      buildSpectra(p, odd_pairs);
+    ++plans_built_;
+    cache_.push_back(PlanSet{std::move(key), std::move(plans), odd_pairs, 0});
+    hit = cache_.end() - 1;
   }
-  planned_size_ = image_size;
+  else if (odd_pairs && !hit->odd_pairs)
+  {
+    for (ScalePlan& p : hit->plans)
+      buildSpectra(p, true);
+    hit->odd_pairs = true;
+  }
+  hit->last_use = uses_;
+  current_ = static_cast<int>(hit - cache_.begin());
+}
+
+void SimpleCellBank::buildSpectra(ScalePlan& p, bool odd_pairs) const
+{
+  const int d = p.decimation;
+  const cv::Size grid(p.padded.width / d, p.padded.height / d);
+  const bool runs = p.runs.empty();  // a second call (computeOdd after compute) adds the odd pairs only
+  odd_pairs = odd_pairs && d == 1 && p.odd_pair_spectra.empty();
+  for (int i = 0; i < parameters_.orientations && (runs || odd_pairs); ++i)
+  {
+    const GaborKernel kernel(p.wavelength, parameters_.theta(i), parameters_);
+    const int r = kernel.radius();
+    // Flipped kernel h(u) = k(-u), wrapped around the origin: convolving with h correlates with k.
+    cv::Mat h(p.padded, CV_32FC2, cv::Scalar::all(0));
+    for (int y = -r; y <= r; ++y)
+      for (int x = -r; x <= r; ++x)
+      {
+        const int wy = (-y + p.padded.height) % p.padded.height;
+        const int wx = (-x + p.padded.width) % p.padded.width;
+        h.at<cv::Vec2f>(wy, wx) =
+            cv::Vec2f(kernel.even().at<float>(y + r, x + r), kernel.odd().at<float>(y + r, x + r));
+      }
+    if (runs)
+    {
+      cv::Mat spectrum;
+      FourierTransform::forward(h, spectrum);
+      // 1/d^2 for the fold, 1/grid area for the unscaled inverse DFT of compute().
+      spectrum *= 1.0 / (double(d) * d * grid.area());
+      p.runs.push_back(supportRuns(spectrum, grid));
+    }
+    if (odd_pairs)
+    {
+      // Odd-only pairs: orientation i goes to the real part, i+1 to the imaginary part.
+      std::vector<cv::Mat> parts;
+      cv::split(h, parts);
+      if (i % 2 == 0)
+        p.odd_pair_spectra.push_back(cv::Mat(p.padded, CV_32FC2, cv::Scalar::all(0)));
+      cv::Mat pair_parts[2];
+      cv::split(p.odd_pair_spectra.back(), pair_parts);
+      parts[1].copyTo(pair_parts[i % 2]);
+      cv::merge(pair_parts, 2, p.odd_pair_spectra.back());
+    }
+  }
+  // The pairs were filled in the spatial domain; transform them once complete.
+  if (odd_pairs)
+    for (cv::Mat& pair : p.odd_pair_spectra)
+    {
+      FourierTransform::forward(pair, pair);
+      pair *= 1.0 / p.padded.area();  // computeOdd's inverse DFT is unscaled
+    }
 }
 
 std::vector<cv::Mat> SimpleCellBank::imageSpectra(const cv::Mat& gray) const
 {
-  const int n_scales = static_cast<int>(plans_.size());
+  const int n_scales = static_cast<int>(current().size());
   // Image spectra, one per distinct padding (coarse scales share the widest one).
   std::vector<cv::Mat> image_spectra(n_scales);
   std::vector<int> sources;
-  for (const ScalePlan& p : plans_)
+  for (const ScalePlan& p : current())
     if (std::find(sources.begin(), sources.end(), p.spectrum_source) == sources.end())
       sources.push_back(p.spectrum_source);
   cv::parallel_for_(cv::Range(0, static_cast<int>(sources.size())), [&](const cv::Range& range) {
     for (int k = range.start; k < range.end; ++k)
     {
       const int s = sources[k];
-      const ScalePlan& p = plans_[s];
+      const ScalePlan& p = current()[s];
       cv::Mat padded;
       cv::copyMakeBorder(gray, padded, p.padding, p.padded.height - gray.rows - p.padding, p.padding,
                          p.padded.width - gray.cols - p.padding, cv::BORDER_REFLECT_101);
-      cv::dft(padded, image_spectra[s], cv::DFT_COMPLEX_OUTPUT);
+      FourierTransform::forward(padded, image_spectra[s]);
     }
   });
 
@@ -171,24 +206,24 @@ std::vector<cv::Mat> SimpleCellBank::imageSpectra(const cv::Mat& gray) const
 std::vector<std::vector<cv::Mat>> SimpleCellBank::computeOdd(const cv::Mat& gray)
 {
   CV_Assert(gray.type() == CV_32FC1 && !gray.empty());
-  plan(gray.size());
-  for (const ScalePlan& p : plans_)
+  plan(gray.size(), true);
+  for (const ScalePlan& p : current())
     if (p.decimation != 1)
       throw std::invalid_argument("SimpleCellBank::computeOdd needs min_grid_wavelength 0 (decimation 1)");
   const std::vector<cv::Mat> image_spectra = imageSpectra(gray);
-  const int n_scales = static_cast<int>(plans_.size());
+  const int n_scales = static_cast<int>(current().size());
   const int n_orient = parameters_.orientations;
   const int n_pairs = (n_orient + 1) / 2;
   std::vector<std::vector<cv::Mat>> out(n_scales, std::vector<cv::Mat>(n_orient));
   cv::parallel_for_(cv::Range(0, n_scales * n_pairs), [&](const cv::Range& range) {
-    cv::Mat product, response;
+    cv::Mat product;
     for (int job = range.start; job < range.end; ++job)
     {
       const int s = job / n_pairs, pair = job % n_pairs;
-      const ScalePlan& p = plans_[s];
+      const ScalePlan& p = current()[s];
       cv::mulSpectrums(image_spectra[p.spectrum_source], p.odd_pair_spectra[pair], product, 0);
-      cv::idft(product, response, cv::DFT_COMPLEX_OUTPUT | cv::DFT_SCALE);
-      const cv::Mat valid = response(cv::Rect(p.padding, p.padding, gray.cols, gray.rows));
+      FourierTransform::inverseUnscaled(product, product);  // the pair spectra carry the 1/N
+      const cv::Mat valid = product(cv::Rect(p.padding, p.padding, gray.cols, gray.rows));
       cv::Mat parts[2];
       cv::split(valid, parts);
       out[s][2 * pair] = parts[0];
@@ -202,8 +237,8 @@ std::vector<std::vector<cv::Mat>> SimpleCellBank::computeOdd(const cv::Mat& gray
 std::vector<ScaleResponses> SimpleCellBank::compute(const cv::Mat& gray)
 {
   CV_Assert(gray.type() == CV_32FC1 && !gray.empty());
-  plan(gray.size());
-  const int n_scales = static_cast<int>(plans_.size());
+  plan(gray.size(), false);
+  const int n_scales = static_cast<int>(current().size());
   const int n_orient = parameters_.orientations;
 
   const std::vector<cv::Mat> image_spectra = imageSpectra(gray);
@@ -211,18 +246,18 @@ std::vector<ScaleResponses> SimpleCellBank::compute(const cv::Mat& gray)
   std::vector<ScaleResponses> out(n_scales);
   for (int s = 0; s < n_scales; ++s)
   {
-    out[s].wavelength = plans_[s].wavelength;
-    out[s].decimation = plans_[s].decimation;
+    out[s].wavelength = current()[s].wavelength;
+    out[s].decimation = current()[s].decimation;
     out[s].even.resize(n_orient);
     out[s].odd.resize(n_orient);
   }
   // One job per (scale, orientation): fold the product spectrum onto the grid, invert, crop.
   cv::parallel_for_(cv::Range(0, n_scales * n_orient), [&](const cv::Range& range) {
-    cv::Mat folded, response;
+    cv::Mat folded;
     for (int job = range.start; job < range.end; ++job)
     {
       const int s = job / n_orient, i = job % n_orient;
-      const ScalePlan& p = plans_[s];
+      const ScalePlan& p = current()[s];
       const int d = p.decimation;
       const cv::Size grid(p.padded.width / d, p.padded.height / d);
       folded.create(grid, CV_32FC2);
@@ -238,9 +273,9 @@ std::vector<ScaleResponses> SimpleCellBank::compute(const cv::Mat& gray)
           g[k][1] += f[k][0] * h[k][1] + f[k][1] * h[k][0];
         }
       }
-      cv::idft(folded, response, cv::DFT_COMPLEX_OUTPUT | cv::DFT_SCALE);
+      FourierTransform::inverseUnscaled(folded, folded);  // the kernel spectra carry the 1/N
       const int h = (gray.rows + d - 1) / d, w = (gray.cols + d - 1) / d;
-      const cv::Mat valid = response(cv::Rect(p.padding / d, p.padding / d, w, h));
+      const cv::Mat valid = folded(cv::Rect(p.padding / d, p.padding / d, w, h));
       cv::Mat parts[2] = {out[s].even[i], out[s].odd[i]};
       cv::split(valid, parts);
       out[s].even[i] = parts[0];

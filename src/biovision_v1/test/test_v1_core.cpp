@@ -7,6 +7,7 @@
 
 #include "biovision_v1/direct_gabor_bank.hpp"
 #include "biovision_v1/end_stopped_cells.hpp"
+#include "biovision_v1/fourier_transform.hpp"
 #include "biovision_v1/gabor_kernel.hpp"
 #include "biovision_v1/input_image.hpp"
 #include "biovision_v1/line_edge_detector.hpp"
@@ -82,6 +83,70 @@ TEST(GaborParameters, RejectsBadValues)
   EXPECT_NO_THROW(GaborParameters().validate());
 }
 
+// FourierTransform against cv::dft (the reference it replaces), relative to the spectrum's peak.
+double spectrumError(const cv::Mat& ours, const cv::Mat& ref)
+{
+  double peak = 0.0;
+  cv::minMaxLoc(cv::abs(ref.reshape(1)), nullptr, &peak);
+  return cv::norm(ours, ref, cv::NORM_INF) / std::max(peak, 1e-12);
+}
+
+TEST(FourierTransform, EqualsOpenCvsDftOnRealAndComplexImagesOfOddAndEvenSizes)
+{
+  for (const cv::Size size : {cv::Size(1, 1), cv::Size(7, 5), cv::Size(13, 1), cv::Size(1, 9), cv::Size(64, 48),
+                              cv::Size(75, 81), cv::Size(173, 131)})
+  {
+    cv::Mat real(size, CV_32F), complex(size, CV_32FC2), ref, ours;
+    cv::randu(real, -1.0, 1.0);
+    cv::randu(complex, -1.0, 1.0);
+    cv::dft(real, ref, cv::DFT_COMPLEX_OUTPUT);
+    FourierTransform::forward(real, ours);
+    ASSERT_EQ(ours.size(), size);
+    ASSERT_EQ(ours.type(), CV_32FC2);
+    EXPECT_LT(spectrumError(ours, ref), 1e-5) << "real " << size;
+    cv::dft(complex, ref, cv::DFT_COMPLEX_OUTPUT);
+    FourierTransform::forward(complex, ours);
+    EXPECT_LT(spectrumError(ours, ref), 1e-5) << "complex " << size;
+    cv::idft(complex, ref, cv::DFT_COMPLEX_OUTPUT);  // unscaled, like inverseUnscaled
+    FourierTransform::inverseUnscaled(complex, ours);
+    EXPECT_LT(spectrumError(ours, ref), 1e-5) << "inverse " << size;
+  }
+}
+
+TEST(FourierTransform, InPlaceAndOnARegionOfInterest)
+{
+  cv::Mat big(90, 120, CV_32FC2);
+  cv::randu(big, -1.0, 1.0);
+  const cv::Mat roi = big(cv::Rect(3, 5, 61, 47));  // neither continuous nor aligned
+  cv::Mat ref, ours;
+  cv::dft(roi, ref, cv::DFT_COMPLEX_OUTPUT);
+  FourierTransform::forward(roi, ours);
+  EXPECT_LT(spectrumError(ours, ref), 1e-5);
+  // In place: the spectrum replaces the image; the inverse gives N times the image back.
+  cv::Mat x = roi.clone(), original = x.clone();
+  const uchar* buffer = x.data;
+  FourierTransform::forward(x, x);
+  EXPECT_EQ(x.data, buffer);
+  EXPECT_LT(spectrumError(x, ref), 1e-5);
+  FourierTransform::inverseUnscaled(x, x);
+  EXPECT_LT(cv::norm(x / double(x.total()), original, cv::NORM_INF), 1e-5);
+}
+
+TEST(FourierTransform, MakesOnePlanPerSizeAndRefusesOtherTypes)
+{
+  cv::Mat a(37, 41, CV_32F, cv::Scalar(1)), out;
+  FourierTransform::forward(a, out);
+  const long made = FourierTransform::plansMade();
+  FourierTransform::forward(a, out);
+  FourierTransform::forward(a + 1, out);
+  EXPECT_EQ(FourierTransform::plansMade(), made);
+  EXPECT_NEAR(out.at<cv::Vec2f>(0, 0)[0], 2.0 * 37 * 41, 1e-2);  // DC of a constant 2
+  EXPECT_THROW(FourierTransform::forward(cv::Mat(), out), std::invalid_argument);
+  EXPECT_THROW(FourierTransform::forward(cv::Mat(4, 4, CV_8U), out), std::invalid_argument);
+  EXPECT_THROW(FourierTransform::inverseUnscaled(cv::Mat(4, 4, CV_32F), out), std::invalid_argument);
+  EXPECT_NE(FourierTransform::backend().find("fftw"), std::string::npos);
+}
+
 TEST(SimpleCellBank, EqualsDirectConvolutionAtEveryGrid)
 {
   const cv::Mat img = texture(173, 131, 7);  // odd sizes exercise padding and cropping
@@ -113,6 +178,39 @@ TEST(SimpleCellBank, ReplansWhenTheImageSizeChanges)
   const auto ref_large = DirectGaborBank(p).compute(texture(96, 80, 2));
   EXPECT_LT(DirectGaborBank::maxRelativeError(bank.compute(texture(96, 80, 2)), ref_large), 1e-4);
   EXPECT_LT(DirectGaborBank::maxRelativeError(bank.compute(texture(64, 48, 1)), ref_small), 1e-4);
+}
+
+TEST(SimpleCellBank, ReusesCachedKernelSpectraAcrossSizesOfOneDftSize)
+{
+  GaborParameters p;
+  p.wavelengths = {4, 8};
+  p.min_grid_wavelength = 0.0;
+  SimpleCellBank bank(p);
+  // 62 and 63 px (plus padding) round up to the same DFT sizes: the second size builds nothing, and its
+  // responses (and odd cells) still equal the direct convolution of its own size.
+  const cv::Mat a = texture(62, 50, 3), b = texture(63, 51, 4);
+  bank.compute(a);
+  EXPECT_EQ(bank.plansBuilt(), 1);
+  const auto ours = bank.compute(b);
+  EXPECT_EQ(bank.plansBuilt(), 1);
+  const auto ref = DirectGaborBank(p).compute(b);
+  EXPECT_LT(DirectGaborBank::maxRelativeError(ours, ref), 1e-4);
+  const auto odd = bank.computeOdd(b);  // adds the odd pairs to the cached set
+  EXPECT_EQ(bank.plansBuilt(), 1);
+  for (size_t s = 0; s < ref.size(); ++s)
+    for (int i = 0; i < p.orientations; ++i)
+    {
+      double peak = 0.0;
+      cv::minMaxLoc(cv::abs(ref[s].odd[i]), nullptr, &peak);
+      EXPECT_LT(cv::norm(odd[s][i], ref[s].odd[i], cv::NORM_INF), 1e-4 * std::max(peak, 1e-6)) << s << " " << i;
+    }
+  // The cache keeps kPlanCacheSize sets: as many more distinct sizes evict the first, which is rebuilt.
+  // Widths 64 px apart always round up to distinct DFT sizes (5-smooth numbers below 2000 are < 64 apart).
+  for (int k = 0; k < SimpleCellBank::kPlanCacheSize; ++k)
+    bank.compute(texture(100 + 64 * k, 40, k));
+  EXPECT_EQ(bank.plansBuilt(), 1 + SimpleCellBank::kPlanCacheSize);
+  EXPECT_LT(DirectGaborBank::maxRelativeError(bank.compute(a), DirectGaborBank(p).compute(a)), 1e-4);
+  EXPECT_EQ(bank.plansBuilt(), 2 + SimpleCellBank::kPlanCacheSize);
 }
 
 TEST(SimpleCellBank, UniformImageGivesNoResponse)

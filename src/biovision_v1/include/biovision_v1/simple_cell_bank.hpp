@@ -24,7 +24,9 @@ namespace biovision_v1
 ///   about a tenth of the spectrum), fused with the folding;
 /// - the image is padded by the kernel radius with BORDER_REFLECT_101, so the circular convolution
 ///   equals cv::filter2D's border handling.
-/// Kernel spectra are cached per image size; compute() rebuilds them when the size changes.
+/// Kernel spectra are cached per DFT size, for the kPlanCacheSize sizes used last: a consumer whose
+/// image size changes from call to call (recognition's region crops) reuses them whenever two sizes
+/// round up to the same DFT size, instead of rebuilding 2 x orientations kernel DFTs per call.
 class SimpleCellBank
 {
 public:
@@ -40,6 +42,11 @@ public:
   std::vector<std::vector<cv::Mat>> computeOdd(const cv::Mat& gray);
 
   const GaborParameters& parameters() const { return parameters_; }
+
+  /// Kernel spectra sets kept (one per distinct set of DFT sizes), least recently used dropped first.
+  static constexpr int kPlanCacheSize = 24;
+  /// Kernel spectra sets built so far (for tests and benchmarks: a cache hit builds none).
+  long plansBuilt() const { return plans_built_; }
 
 private:
   struct SpectrumRun
@@ -59,16 +66,29 @@ private:
     // Per orientation: the kernel spectrum (DFT of the flipped complex kernel, / d^2) where it is not
     // negligible, as runs along spectrum rows, each already mapped onto the folded grid.
     std::vector<std::vector<SpectrumRun>> runs;
-    // Per orientation pair (i, i+1): spectrum of odd_i + j odd_{i+1} (both real kernels), for computeOdd.
+    // Per orientation pair (i, i+1): spectrum of odd_i + j odd_{i+1} (both real kernels), for computeOdd
+    // only (built on its first call: compute() never reads them).
     std::vector<cv::Mat> odd_pair_spectra;
   };
 
-  void plan(const cv::Size& image_size);
+  struct PlanSet
+  {
+    std::vector<cv::Size> key;  // per scale: the padded DFT size, all the spectra depend on
+    std::vector<ScalePlan> plans;
+    bool odd_pairs = false;  // odd_pair_spectra built
+    long last_use = 0;
+  };
+
+  /// Makes plans_ point at the kernel spectra for image_size (from the cache, or built and cached).
+  void plan(const cv::Size& image_size, bool odd_pairs);
+  void buildSpectra(ScalePlan& p, bool odd_pairs) const;
+  const std::vector<ScalePlan>& current() const { return cache_.at(current_).plans; }
   std::vector<cv::Mat> imageSpectra(const cv::Mat& gray) const;
   static std::vector<SpectrumRun> supportRuns(const cv::Mat& spectrum, const cv::Size& grid);
 
   GaborParameters parameters_;
-  cv::Size planned_size_;
-  std::vector<ScalePlan> plans_;
+  std::vector<PlanSet> cache_;
+  int current_ = -1;  // the cache_ entry plan() chose last
+  long uses_ = 0, plans_built_ = 0;
 };
 }  // namespace biovision_v1

@@ -1,0 +1,178 @@
+#include "biovision_v1/fourier_transform.hpp"
+
+#include <fftw3.h>
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+#include <tuple>
+
+namespace biovision_v1
+{
+namespace
+{
+enum class Kind
+{
+  kRealForward,
+  kComplexForward,
+  kComplexInverse
+};
+
+struct Key
+{
+  int rows, cols;
+  Kind kind;
+  bool in_place;
+  bool operator<(const Key& o) const
+  {
+    return std::tie(rows, cols, kind, in_place) < std::tie(o.rows, o.cols, o.kind, o.in_place);
+  }
+};
+
+struct Entry
+{
+  std::shared_ptr<fftwf_plan_s> plan;
+  long last_use = 0;
+};
+
+// FFTW's planner (making and destroying plans) is not thread-safe; fftwf_execute_dft* is.
+std::mutex& plannerMutex()
+{
+  static std::mutex m;
+  return m;
+}
+
+struct Cache
+{
+  std::map<Key, Entry> plans;
+  long uses = 0, made = 0;
+};
+
+Cache& cache()
+{
+  static Cache c;
+  return c;
+}
+
+std::shared_ptr<fftwf_plan_s> planFor(const Key& key)
+{
+  // Declared before the lock, so an evicted plan is destroyed (its deleter takes the lock) after it.
+  std::shared_ptr<fftwf_plan_s> evicted;
+  std::lock_guard<std::mutex> lock(plannerMutex());
+  Cache& c = cache();
+  ++c.uses;
+  auto it = c.plans.find(key);
+  if (it != c.plans.end())
+  {
+    it->second.last_use = c.uses;
+    return it->second.plan;
+  }
+  if (static_cast<int>(c.plans.size()) >= FourierTransform::kMaxPlans)
+  {
+    auto oldest = c.plans.begin();
+    for (auto i = c.plans.begin(); i != c.plans.end(); ++i)
+      if (i->second.last_use < oldest->second.last_use)
+        oldest = i;
+    evicted = std::move(oldest->second.plan);  // a thread still executing it holds its own reference
+    c.plans.erase(oldest);
+  }
+  // Plans are made on scratch arrays with fftwf_malloc's alignment; execute() checks the caller's match.
+  const size_t n = static_cast<size_t>(key.rows) * key.cols;
+  fftwf_complex* out = fftwf_alloc_complex(n);
+  void* in = key.in_place ? static_cast<void*>(out) : fftwf_malloc(n * sizeof(fftwf_complex));
+  fftwf_plan p = nullptr;
+  if (key.kind == Kind::kRealForward)
+  {
+    // Output rows W complex apart (the full spectrum's layout): FFTW writes columns 0..W/2 of each.
+    const int n2[2] = {key.rows, key.cols};
+    p = fftwf_plan_many_dft_r2c(2, n2, 1, static_cast<float*>(in), nullptr, 1, 0, out, n2, 1, 0, FFTW_ESTIMATE);
+  }
+  else
+    p = fftwf_plan_dft_2d(key.rows, key.cols, static_cast<fftwf_complex*>(in), out,
+                          key.kind == Kind::kComplexForward ? FFTW_FORWARD : FFTW_BACKWARD, FFTW_ESTIMATE);
+  if (!key.in_place)
+    fftwf_free(in);
+  fftwf_free(out);
+  if (!p)
+    throw std::runtime_error("FourierTransform: FFTW could not plan a " + std::to_string(key.rows) + "x" +
+                             std::to_string(key.cols) + " transform");
+  ++c.made;
+  std::shared_ptr<fftwf_plan_s> plan(p, [](fftwf_plan q) {
+    std::lock_guard<std::mutex> l(plannerMutex());
+    fftwf_destroy_plan(q);
+  });
+  c.plans[key] = Entry{plan, c.uses};
+  return plan;
+}
+
+// FFTW executes a plan on new arrays only with the alignment it was planned with (fftwf_malloc's).
+bool usable(const cv::Mat& m)
+{
+  return m.isContinuous() && fftwf_alignment_of(reinterpret_cast<float*>(m.data)) == 0;
+}
+
+// dst as a continuous, aligned CV_32FC2 matrix of the given size (reallocated when it is not).
+void prepareOutput(cv::Mat& dst, const cv::Size& size)
+{
+  dst.create(size, CV_32FC2);
+  if (!usable(dst))
+    dst = cv::Mat(size, CV_32FC2);
+}
+}  // namespace
+
+void FourierTransform::forward(const cv::Mat& src_in, cv::Mat& spectrum)
+{
+  if (src_in.empty() || (src_in.type() != CV_32FC1 && src_in.type() != CV_32FC2))
+    throw std::invalid_argument("FourierTransform::forward: needs a non-empty CV_32FC1 or CV_32FC2 image");
+  const cv::Mat src = usable(src_in) ? src_in : src_in.clone();
+  const int h = src.rows, w = src.cols;
+  if (src.type() == CV_32FC2)
+  {
+    const bool in_place = spectrum.data == src.data && spectrum.size() == src.size() && spectrum.type() == CV_32FC2;
+    if (!in_place)
+      prepareOutput(spectrum, src.size());
+    const auto plan = planFor({h, w, Kind::kComplexForward, in_place});
+    fftwf_execute_dft(plan.get(), reinterpret_cast<fftwf_complex*>(src.data),
+                      reinterpret_cast<fftwf_complex*>(spectrum.data));
+    return;
+  }
+  cv::Mat out;
+  prepareOutput(out, src.size());  // never src's buffer: a real image is not its own spectrum
+  const auto plan = planFor({h, w, Kind::kRealForward, false});
+  fftwf_execute_dft_r2c(plan.get(), reinterpret_cast<float*>(src.data), reinterpret_cast<fftwf_complex*>(out.data));
+  // The other half: X[y][x] = conj(X[-y mod H][W - x]) for x > W/2 (those sources are all in the computed half).
+  for (int y = 0; y < h; ++y)
+  {
+    cv::Vec2f* row = out.ptr<cv::Vec2f>(y);
+    const cv::Vec2f* mirror = out.ptr<cv::Vec2f>((h - y) % h);
+    for (int x = w / 2 + 1; x < w; ++x)
+      row[x] = cv::Vec2f(mirror[w - x][0], -mirror[w - x][1]);
+  }
+  spectrum = out;
+}
+
+void FourierTransform::inverseUnscaled(const cv::Mat& spectrum_in, cv::Mat& dst)
+{
+  if (spectrum_in.empty() || spectrum_in.type() != CV_32FC2)
+    throw std::invalid_argument("FourierTransform::inverseUnscaled: needs a non-empty CV_32FC2 spectrum");
+  const cv::Mat spectrum = usable(spectrum_in) ? spectrum_in : spectrum_in.clone();
+  const bool in_place = dst.data == spectrum.data && dst.size() == spectrum.size() && dst.type() == CV_32FC2;
+  if (!in_place)
+    prepareOutput(dst, spectrum.size());
+  const auto plan = planFor({spectrum.rows, spectrum.cols, Kind::kComplexInverse, in_place});
+  fftwf_execute_dft(plan.get(), reinterpret_cast<fftwf_complex*>(spectrum.data),
+                    reinterpret_cast<fftwf_complex*>(dst.data));
+}
+
+std::string FourierTransform::backend()
+{
+  return std::string("fftw3f ") + fftwf_version;
+}
+
+long FourierTransform::plansMade()
+{
+  std::lock_guard<std::mutex> lock(plannerMutex());
+  return cache().made;
+}
+}  // namespace biovision_v1

@@ -44,9 +44,42 @@ cv::Point2f EndStoppedCells::normal(int i) const
 
 cv::Mat EndStoppedCells::shifted(const cv::Mat& src, const cv::Point2f& offset)
 {
-  const cv::Matx23f m(1.f, 0.f, offset.x, 0.f, 1.f, offset.y);
-  cv::Mat dst;
-  cv::warpAffine(src, dst, m, src.size(), cv::INTER_LINEAR | cv::WARP_INVERSE_MAP, cv::BORDER_REPLICATE);
+  CV_Assert(src.type() == CV_32FC1);
+  // One offset for the whole map, so the bilinear weights are constants: a padded copy and a weighted sum
+  // of four shifted rows (exact weights, where cv::warpAffine quantises them to 1/32 and ran 5-10x slower:
+  // it was a tenth of the perception loop's CPU under perf).
+  const int ix = static_cast<int>(std::floor(offset.x)), iy = static_cast<int>(std::floor(offset.y));
+  const float fx = offset.x - ix, fy = offset.y - iy;
+  const int w = src.cols, h = src.rows;
+  // Replicated margins wide enough for x + ix .. x + ix + 1 and y + iy .. y + iy + 1 (capped: beyond the
+  // map every sample is an edge value anyway).
+  const int left = std::clamp(-ix, 0, w + 1), right = std::clamp(ix + 1, 0, w + 1);
+  const int top = std::clamp(-iy, 0, h + 1), bottom = std::clamp(iy + 1, 0, h + 1);
+  cv::Mat padded;
+  cv::copyMakeBorder(src, padded, top, bottom, left, right, cv::BORDER_REPLICATE);
+  const float w00 = (1 - fx) * (1 - fy), w01 = fx * (1 - fy), w10 = (1 - fx) * fy, w11 = fx * fy;
+  cv::Mat dst(src.size(), CV_32FC1);
+  for (int y = 0; y < h; ++y)
+  {
+    // Source row y + iy (clamped into the padded map: far shifts read the replicated edge).
+    const int r0 = std::clamp(y + iy + top, 0, padded.rows - 1), r1 = std::clamp(y + iy + 1 + top, 0, padded.rows - 1);
+    const float* a = padded.ptr<float>(r0);
+    const float* b = padded.ptr<float>(r1);
+    float* out = dst.ptr<float>(y);
+    const int c0 = ix + left;
+    if (c0 >= 0 && c0 + w < padded.cols)
+    {
+      const float *a0 = a + c0, *b0 = b + c0;
+      for (int x = 0; x < w; ++x)
+        out[x] = w00 * a0[x] + w01 * a0[x + 1] + w10 * b0[x] + w11 * b0[x + 1];
+    }
+    else
+      for (int x = 0; x < w; ++x)
+      {
+        const int x0 = std::clamp(x + c0, 0, padded.cols - 1), x1 = std::clamp(x + c0 + 1, 0, padded.cols - 1);
+        out[x] = w00 * a[x0] + w01 * a[x1] + w10 * b[x0] + w11 * b[x1];
+      }
+  }
   return dst;
 }
 }  // namespace biovision_v1

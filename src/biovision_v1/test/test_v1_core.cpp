@@ -147,6 +147,32 @@ TEST(FourierTransform, MakesOnePlanPerSizeAndRefusesOtherTypes)
   EXPECT_NE(FourierTransform::backend().find("fftw"), std::string::npos);
 }
 
+TEST(EndStoppedCells, ShiftedIsExactBilinearWithReplicatedEdges)
+{
+  cv::Mat src(23, 31, CV_32F);
+  cv::randu(src, 0.0, 1.0);
+  const auto at = [&src](double x, double y) {  // replicated edges
+    return double(src.at<float>(std::clamp(int(y), 0, src.rows - 1), std::clamp(int(x), 0, src.cols - 1)));
+  };
+  for (const cv::Point2f o : {cv::Point2f(0, 0), cv::Point2f(2.4f, -1.7f), cv::Point2f(-0.3f, 0.8f),
+                              cv::Point2f(-3.5f, -2.25f), cv::Point2f(40.f, -30.5f), cv::Point2f(1.f, 0.f)})
+  {
+    const cv::Mat ours = EndStoppedCells::shifted(src, o);
+    ASSERT_EQ(ours.size(), src.size());
+    double worst = 0.0;
+    for (int y = 0; y < src.rows; ++y)
+      for (int x = 0; x < src.cols; ++x)
+      {
+        const double sx = x + o.x, sy = y + o.y, x0 = std::floor(sx), y0 = std::floor(sy);
+        const double fx = sx - x0, fy = sy - y0;
+        const double ref = (1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x0 + 1, y0)) +
+                           fy * ((1 - fx) * at(x0, y0 + 1) + fx * at(x0 + 1, y0 + 1));
+        worst = std::max(worst, std::abs(ours.at<float>(y, x) - ref));
+      }
+    EXPECT_LT(worst, 1e-5) << o;
+  }
+}
+
 TEST(SimpleCellBank, EqualsDirectConvolutionAtEveryGrid)
 {
   const cv::Mat img = texture(173, 131, 7);  // odd sizes exercise padding and cropping

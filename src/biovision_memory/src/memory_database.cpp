@@ -416,4 +416,22 @@ void MemoryDatabase::save(const LongTermMemory::Changes& cells, const ObjectMemo
   pending_cells_.clear();
   pending_objects_.clear();
 }
+
+void MemoryDatabase::clear()
+{
+  exec("BEGIN IMMEDIATE");
+  try
+  {
+    exec("DELETE FROM ltm_cells");
+    exec("DELETE FROM objects");
+    exec("COMMIT");
+  }
+  catch (...)
+  {
+    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+    throw;
+  }
+  pending_cells_.clear();
+  pending_objects_.clear();
+}
 }  // namespace biovision_memory

@@ -117,6 +117,32 @@ TEST_F(MemoryDatabaseTest, RoundTripOfAFullMap)
   EXPECT_EQ(db.loadObjects().size(), 2u);
 }
 
+TEST_F(MemoryDatabaseTest, ClearForgetsEverythingStoredAndStaysUsable)
+{
+  LongTermMemory ltm;
+  ObjectMemory om;
+  fill(ltm, om, 50);
+  {
+    MemoryDatabase db(path_, {});
+    db.save(ltm.takeChanges(), om.takeChanges());
+  }
+  {
+    MemoryDatabase db(path_, {});
+    ASSERT_EQ(db.loadObjects().size(), 2u);
+    db.clear();
+    EXPECT_TRUE(db.loadCells().empty());
+    EXPECT_TRUE(db.loadObjects().empty());
+    // What is learnt afterwards is saved and loads again.
+    ObjectMemory later;
+    later.observe("mug", {0.5, 0.5, 0.5}, 9.0);
+    db.save({}, later.takeChanges());
+  }
+  MemoryDatabase db(path_, {});
+  EXPECT_TRUE(db.loadCells().empty());
+  ASSERT_EQ(db.loadObjects().size(), 1u);
+  EXPECT_EQ(db.loadObjects().front().label, "mug");
+}
+
 TEST_F(MemoryDatabaseTest, ANewerSchemaIsRefusedUnlessToldToStartEmpty)
 {
   {

@@ -23,6 +23,7 @@ TEST(ParameterFile, MemoryYamlEqualsTheDefaults)
   EXPECT_EQ(y["base_frame"].as<std::string>(), s.base_frame);
   EXPECT_EQ(y["database"].as<std::string>(), s.database);
   EXPECT_EQ(y["start_empty_on_bad_database"].as<bool>(), s.start_empty_on_bad_database);
+  EXPECT_EQ(y["start_empty"].as<bool>(), s.start_empty);
   EXPECT_DOUBLE_EQ(y["save_period"].as<double>(), s.save_period);
   EXPECT_DOUBLE_EQ(y["ltm_period"].as<double>(), s.ltm_period);
   EXPECT_DOUBLE_EQ(y["publish_period"].as<double>(), s.publish_period);

@@ -72,6 +72,10 @@ public:
   /// keeps them: the next save() writes them together with its own (later changes win), so nothing is
   /// lost while the process runs. The database keeps its last committed state.
   void save(const LongTermMemory::Changes& cells, const ObjectMemory::Changes& objects);
+  /// Forgets everything stored (map cells and objects) in one transaction, and any pending changes: a
+  /// robot that starts a new mission knowing nothing (the memory nodelet's ~start_empty). Throws
+  /// DatabaseError when the transaction fails (the database then keeps its contents).
+  void clear();
   /// Changes waiting for a successful save() (after a failed one).
   size_t pending() const { return pending_cells_.size() + pending_objects_.size(); }
 

@@ -51,6 +51,7 @@ void MemoryNodelet::readParameters(const ros::NodeHandle& pnh, Settings& s, Shor
   param(pnh, "base_frame", s.base_frame);
   param(pnh, "database", s.database);
   param(pnh, "start_empty_on_bad_database", s.start_empty_on_bad_database);
+  param(pnh, "start_empty", s.start_empty);
   param(pnh, "save_period", s.save_period);
   param(pnh, "ltm_period", s.ltm_period);
   param(pnh, "publish_period", s.publish_period);
@@ -141,6 +142,8 @@ void MemoryNodelet::onInitNodelet()
                                           "the memory database was refused, starting with an empty "
                                           "memory; the refused file is kept as " +
                                               database_->movedAside() + ": " + database_->refusal());
+      if (settings_.start_empty)
+        database_->clear();
       ltm_->load(database_->loadCells());
       objects_->load(database_->loadObjects());
       NODELET_INFO("memory database %s: %zu map cells, %zu objects", settings_.database.c_str(), ltm_->cells().size(),

@@ -146,8 +146,8 @@ void SimpleCellBank::buildSpectra(ScalePlan& p, bool odd_pairs) const
       {
         const int wy = (-y + p.padded.height) % p.padded.height;
         const int wx = (-x + p.padded.width) % p.padded.width;
-        h.at<cv::Vec2f>(wy, wx) =
-            cv::Vec2f(kernel.even().at<float>(y + r, x + r), kernel.odd().at<float>(y + r, x + r));
+        h.at<cv::Vec2f>(wy, wx) = cv::Vec2f(kernel.even().at<float>(y + r, x + r),
+                                            kernel.odd().at<float>(y + r, x + r));
       }
     if (runs)
     {

@@ -47,7 +47,7 @@ public:
     std::string base_frame = "base_link";
     std::string database;  ///< SQLite file; "" = no persistence
     bool start_empty_on_bad_database = false;
-    bool start_empty = false;  // forget what the database holds at start (a new mission)
+    bool start_empty = false;        // forget what the database holds at start (a new mission)
     double save_period = 5.0;        ///< [s] wall time between database transactions
     double ltm_period = 0.5;         ///< [s] ROS time between LTM updates (one reinforcement per period)
     double publish_period = 1.0;     ///< [s] between memory/ltm and memory/ltm_items

@@ -51,12 +51,22 @@ void SearchTask::onDetect(const Percept& percept)
   if (label_.empty() || found_)
     return;
   for (const auto& o : percept.seen)
-    if (o.label == label_)
+  {
+    if (o.label != label_)
+      continue;
+    const bool confirms = candidate_ && o.last_seen > candidate_->last_seen &&
+                          o.last_seen - candidate_->last_seen <= parameters_.confirm_time &&
+                          std::hypot(o.x - candidate_->x, o.y - candidate_->y) <= parameters_.confirm_distance;
+    if (parameters_.confirm_distance <= 0 || confirms)
     {
       found_ = true;
       record_->found[label_] = o;
       return;
     }
+    // The newest sighting waits for its confirmation (a sighting of the same frame is no second one).
+    if (!candidate_ || o.last_seen > candidate_->last_seen)
+      candidate_ = o;
+  }
 }
 
 TaskState SearchTask::onConclude(const Percept& percept)

@@ -39,6 +39,8 @@ void TaskParameters::validate() const
   check("stall_time", stall_time, 1.0, 3600.0);
   check("stall_distance", stall_distance, 0.01, 10.0);
   check("min_memory_confidence", min_memory_confidence, 0.0, 1.0);
+  check("confirm_distance", confirm_distance, 0.0, 10.0);
+  check("confirm_time", confirm_time, 0.1, 60.0);
   check("search_timeout", search_timeout, 1.0, 36000.0);
   check("go_to_timeout", go_to_timeout, 1.0, 36000.0);
 }
@@ -63,6 +65,8 @@ const std::vector<std::pair<std::string, double TaskParameters::*>>& TaskParamet
       {"stall_time", &TaskParameters::stall_time},
       {"stall_distance", &TaskParameters::stall_distance},
       {"min_memory_confidence", &TaskParameters::min_memory_confidence},
+      {"confirm_distance", &TaskParameters::confirm_distance},
+      {"confirm_time", &TaskParameters::confirm_time},
       {"search_timeout", &TaskParameters::search_timeout},
       {"go_to_timeout", &TaskParameters::go_to_timeout},
   };

@@ -172,14 +172,15 @@ TEST(TaskManager, DetectionOfWaitingTasksCountsWhenTheirTurnComes)
   manager.add(spec("search cup"));
   Percept p = at(0);
   p.seen.push_back({"cup", 2.0, 1.0, 0.9, 0.0});
-  manager.step(p);  // the search is not active yet, but its detection sees the cup
+  p.seen.push_back({"cup", 2.1, 1.0, 0.9, 0.2});  // the second sighting confirms the first
+  manager.step(p);                                // the search is not active yet, but its detection sees the cup
   EXPECT_EQ(manager.status().macro_task, "wait");
   manager.step(at(10.5));  // the wait ends; the search starts and concludes at once
   EXPECT_TRUE(manager.idle());
   ASSERT_EQ(manager.finished().size(), 2u);
   EXPECT_EQ(manager.finished()[1].name, "search cup");
   EXPECT_EQ(manager.finished()[1].state, TaskState::Succeeded);
-  EXPECT_DOUBLE_EQ(manager.record().found.at("cup").x, 2.0);
+  EXPECT_DOUBLE_EQ(manager.record().found.at("cup").x, 2.1);
 }
 
 TEST(TaskManager, HigherPriorityTakesTheVisuomotorCycleAndConcurrentConclusionsRun)
@@ -482,6 +483,36 @@ TEST(TaskSpec, ParsesMissionsAndRefusesBadOnesNamingTheProblem)
   EXPECT_DOUBLE_EQ(line[1].y, -2);
   EXPECT_THROW(TaskSpec::parseText("search cup mug"), std::invalid_argument);
   EXPECT_THROW(TaskSpec::parseText(" ; "), std::invalid_argument);
+}
+
+TEST(SearchTask, ConcludesOnASecondSightingNearTheFirstNotOnASingleOne)
+{
+  const auto sighting = [](double x, double t) {
+    Percept p = at(t);
+    p.seen.push_back({"cup", x, 0.0, 0.9, t});
+    return p;
+  };
+  TaskManager m;
+  m.add(spec("search cup"));
+  m.step(sighting(2.0, 0.0));  // one recognition: not yet
+  EXPECT_FALSE(m.idle());
+  m.step(sighting(6.0, 1.0));  // a second one 4 m away: a new candidate, no confirmation
+  m.step(at(2.0));
+  EXPECT_FALSE(m.idle());
+  m.step(sighting(6.3, 12.0));  // too late for the candidate of t = 1 (confirm_time 10 s)
+  EXPECT_FALSE(m.idle());
+  m.step(sighting(6.2, 13.0));  // within 2 m and 10 s of the last: found
+  EXPECT_TRUE(m.idle());
+  ASSERT_EQ(m.finished().size(), 1u);
+  EXPECT_EQ(m.finished()[0].state, TaskState::Succeeded);
+  EXPECT_DOUBLE_EQ(m.record().found.at("cup").x, 6.2);
+  // confirm_distance 0: the first sighting concludes, as before.
+  TaskParameters once;
+  once.confirm_distance = 0.0;
+  TaskManager m2(once);
+  m2.add(spec("search cup"));
+  m2.step(sighting(2.0, 0.0));
+  EXPECT_TRUE(m2.idle());
 }
 
 TEST(SearchTask, GoesFirstWhereTheMemoryRemembersTheObject)

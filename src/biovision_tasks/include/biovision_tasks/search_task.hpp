@@ -1,6 +1,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "biovision_tasks/exploration_planner.hpp"
@@ -20,7 +21,7 @@ namespace biovision_tasks
 /// goals, a new one when reached, trapped or every explore_period): at each new goal the base stands for
 /// look_time while the head explores (saliency-driven attractor dynamics, which is what finds objects),
 /// then drives there with the head looking ahead (look_time 0: the head explores all the time). Objective detection: the object recognised in the
-/// view; its map position is recorded in the MissionRecord (a later "go to <object>" or the memory use it).
+/// view twice, the second sighting within confirm_distance and confirm_time of the first; its map position is recorded in the MissionRecord (a later "go to <object>" or the memory use it).
 /// Conclusion: detected → Succeeded; the time-out (the manager's default: search_timeout) → Failed
 /// "object never found".
 class SearchTask : public Task
@@ -50,6 +51,7 @@ private:
   ExplorationPlanner exploration_;
   std::unique_ptr<GoToTask> excursion_;  ///< to where the memory has the object, while it runs
   bool found_ = false;
+  std::optional<Percept::Object> candidate_;  ///< the last unconfirmed sighting of the object
   PathFollower path_;
   bool has_goal_ = false;
   double goal_time_ = -1e9;

@@ -352,9 +352,7 @@ void MemoryDatabase::save(const LongTermMemory::Changes& cells, const ObjectMemo
     if (rc != SQLITE_DONE)
       throw DatabaseError(fail(std::string("writing ") + what + " failed"));
   };
-  exec("BEGIN IMMEDIATE");
-  try
-  {
+  writeTransaction([&] {
     Statement put_cell(db_,
                        "INSERT OR REPLACE INTO ltm_cells (ix, iy, x, y, strength, observations, first_seen, "
                        "last_seen, last_change) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)",
@@ -406,24 +404,23 @@ void MemoryDatabase::save(const LongTermMemory::Changes& cells, const ObjectMemo
       sqlite3_bind_double(s, 9, object->last_change);
       step(put_object, "objects");
     }
-    exec("COMMIT");
-  }
-  catch (...)
-  {
-    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
-    throw;
-  }
-  pending_cells_.clear();
-  pending_objects_.clear();
+  });
 }
 
 void MemoryDatabase::clear()
 {
+  writeTransaction([this] {
+    exec("DELETE FROM ltm_cells");
+    exec("DELETE FROM objects");
+  });
+}
+
+void MemoryDatabase::writeTransaction(const std::function<void()>& body)
+{
   exec("BEGIN IMMEDIATE");
   try
   {
-    exec("DELETE FROM ltm_cells");
-    exec("DELETE FROM objects");
+    body();
     exec("COMMIT");
   }
   catch (...)

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <functional>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -91,6 +92,9 @@ private:
   void check();  // throws DatabaseError on corruption, newer schema, other cell size
   void createSchema();
   void exec(const std::string& sql) const;
+  /// BEGIN IMMEDIATE, body, COMMIT; ROLLBACK and rethrow when anything throws. The pending changes are
+  /// dropped only after the commit.
+  void writeTransaction(const std::function<void()>& body);
   std::string fail(const std::string& what) const;
   void checkValue(const std::string& row, const char* field, double value, double low, double high) const;
   /// The reinforcement fields every table keeps in this order from column `first`: strength, observations,

@@ -1,10 +1,12 @@
-// Integration test of the simulator: topics at their rates (in sim time, over 20 frames: 2 s of camera
+// Integration test of the simulator: topics at their rates (in sim time, over >= 20 frames: 2 s of camera
 // time), the rectified stereo pair from the upstream image_proc nodelets, a tf tree that matches the camera
 // model, the head following a command within its limits, the base following cmd_vel.
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <vector>
 
 #include <geometry_msgs/Twist.h>
 #include <gtest/gtest.h>
@@ -19,21 +21,32 @@
 
 namespace
 {
+// Stamps of one topic. The rate is 1 / the median stamp interval, so one frame that a loaded machine's
+// rectify nodelet drops does not read as a slower camera; missed() counts the frames the stamps skipped.
 class Counter
 {
 public:
   void tick(const ros::Time& stamp)
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (count_ == 0)
-      first_ = stamp;
-    last_ = stamp;
+    if (stamps_.size() < kMaxStamps)
+      stamps_.push_back(stamp.toSec());
     ++count_;
   }
   double rate() const
   {
+    const double dt = medianInterval();
+    return dt > 0 ? 1.0 / dt : 0.0;
+  }
+  // Frames missing between the first and last stamp, at the median interval.
+  int missed() const
+  {
+    const double dt = medianInterval();
     std::lock_guard<std::mutex> lock(mutex_);
-    return count_ > 1 ? (count_ - 1) / (last_ - first_).toSec() : 0.0;
+    if (dt <= 0 || stamps_.size() < 2)
+      return 0;
+    const double span = stamps_.back() - stamps_.front();
+    return static_cast<int>(std::lround(span / dt)) + 1 - static_cast<int>(stamps_.size());
   }
   int count() const
   {
@@ -42,9 +55,21 @@ public:
   }
 
 private:
+  double medianInterval() const
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (stamps_.size() < 2)
+      return 0.0;
+    std::vector<double> dt;
+    for (size_t i = 1; i < stamps_.size(); ++i)
+      dt.push_back(stamps_[i] - stamps_[i - 1]);
+    std::nth_element(dt.begin(), dt.begin() + dt.size() / 2, dt.end());
+    return dt[dt.size() / 2];
+  }
+  static constexpr size_t kMaxStamps = 1000;
   mutable std::mutex mutex_;
   int count_ = 0;
-  ros::Time first_, last_;
+  std::vector<double> stamps_;
 };
 
 template <typename Pred>
@@ -69,20 +94,24 @@ TEST(Sim, TopicsRatesTfHeadAndBase)
     counters[name];
   for (const char* name : {"info", "joints", "odom"})
     counters[name];
+  sensor_msgs::CameraInfo right_info;
+  std::mutex info_mutex;
+  std::atomic<double> pan{0.0};
+  std::atomic<double> odom_x{0.0};
+  // Declared after everything its callbacks touch, so it is destroyed (unsubscribing, which waits for a
+  // callback in progress) before they are: the other order let a spinner thread write into a destroyed
+  // CameraInfo after the test body returned, before gtest wrote its result file.
   std::vector<ros::Subscriber> subs;
   for (const auto& t : image_topics)
     subs.push_back(nh.subscribe<sensor_msgs::Image>(t, 5, [&counters, t](const sensor_msgs::ImageConstPtr& m) {
       counters.at(t).tick(m->header.stamp);
     }));
-  sensor_msgs::CameraInfo right_info;
-  std::mutex info_mutex;
   subs.push_back(nh.subscribe<sensor_msgs::CameraInfo>("stereo/right/camera_info", 5,
                                                        [&](const sensor_msgs::CameraInfoConstPtr& m) {
                                                          counters.at("info").tick(m->header.stamp);
                                                          std::lock_guard<std::mutex> lock(info_mutex);
                                                          right_info = *m;
                                                        }));
-  std::atomic<double> pan{0.0};
   subs.push_back(
       nh.subscribe<sensor_msgs::JointState>("joint_states", 50, [&](const sensor_msgs::JointStateConstPtr& m) {
         counters.at("joints").tick(m->header.stamp);
@@ -90,7 +119,6 @@ TEST(Sim, TopicsRatesTfHeadAndBase)
           if (m->name[i] == "head_pan_joint")
             pan = m->position[i];
       }));
-  std::atomic<double> odom_x{0.0};
   subs.push_back(nh.subscribe<nav_msgs::Odometry>("odom", 50, [&](const nav_msgs::OdometryConstPtr& m) {
     counters.at("odom").tick(m->header.stamp);
     odom_x = m->pose.pose.position.x;
@@ -106,10 +134,17 @@ TEST(Sim, TopicsRatesTfHeadAndBase)
       60.0))
       << "left raw " << counters.at("stereo/left/image_raw").count() << ", left rect "
       << counters.at("stereo/left/image_rect_color").count() << ", joints " << counters.at("joints").count();
+  // The simulator publishes every frame (its clock waits for it); the upstream rectify nodelets may drop
+  // one when the machine is loaded (their queues are short), not one in five.
   for (const auto& t : image_topics)
-    EXPECT_NEAR(counters.at(t).rate(), 10.0, 1.5) << t;
-  EXPECT_NEAR(counters.at("joints").rate(), 50.0, 5.0);
-  EXPECT_NEAR(counters.at("odom").rate(), 50.0, 5.0);
+  {
+    const Counter& c = counters.at(t);
+    EXPECT_NEAR(c.rate(), 10.0, 0.5) << t;
+    EXPECT_LE(c.missed(), c.count() / (t.find("raw") != std::string::npos ? 10 : 5)) << t << ": " << c.count()
+                                                                                  << " frames";
+  }
+  EXPECT_NEAR(counters.at("joints").rate(), 50.0, 2.5);
+  EXPECT_NEAR(counters.at("odom").rate(), 50.0, 2.5);
 
   // tf (robot_state_publisher on the same URDF) and the cameras agree: baseline = P[3] / -fx.
   tf2_ros::Buffer buffer;

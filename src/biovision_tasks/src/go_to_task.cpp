@@ -129,8 +129,13 @@ void GoToTask::onAct(const Percept& percept, MotorCommand& command)
     command.base = MotorCommand::Base::Stop;
     return;
   }
-  if (percept.base_trapped && stuck_since_ == percept.time)  // trapped just now: a fresh plan round what stops it
+  // Trapped: a fresh plan round what stops it, and another every replan_period while it still does (the
+  // first detour may lead into the same obstacle, one the LTM has not got yet).
+  if (percept.base_trapped && (stuck_since_ == percept.time || percept.time - blocked_at_ >= parameters_.replan_period))
+  {
     path_.blockAhead(percept);
+    blocked_at_ = percept.time;
+  }
   const cv::Point2d w = path_.waypoint(percept);
   command.base = MotorCommand::Base::Goal;
   command.goal_x = w.x;

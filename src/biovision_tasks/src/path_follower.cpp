@@ -69,11 +69,19 @@ cv::Point2d PathFollower::waypoint(const Percept& percept)
     if (waypoints_.empty())
       waypoints_.push_back(goal_);
   }
+  // A waypoint within goal_tolerance is passed even without a free sight line to the next one: the base stops
+  // that close to its goal (its own goal_tolerance, 0.2 m), so keeping it would hold the base there for good
+  // (mission_eval tune seed 129: parked 0.14 m from a waypoint beside a wall until the task failed).
   const cv::Point2d here(percept.pose.x, percept.pose.y);
-  while (waypoints_.size() > 1 &&
-         std::hypot(here.x - waypoints_.front().x, here.y - waypoints_.front().y) <= parameters_.waypoint_tolerance &&
-         (blocked_.empty() || GridPlanner::lineOfSight(percept.map, blocked_, here, waypoints_[1])))
+  while (waypoints_.size() > 1)
+  {
+    const double d = std::hypot(here.x - waypoints_.front().x, here.y - waypoints_.front().y);
+    if (d > parameters_.waypoint_tolerance ||
+        (d > parameters_.goal_tolerance && !blocked_.empty() &&
+         !GridPlanner::lineOfSight(percept.map, blocked_, here, waypoints_[1])))
+      break;
     waypoints_.erase(waypoints_.begin());
+  }
   return waypoints_.front();
 }
 }  // namespace biovision_tasks

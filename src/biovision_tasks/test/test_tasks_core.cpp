@@ -424,6 +424,58 @@ TEST(PathFollower, BlockAheadPlansRoundWhatStopsTheBase)
   EXPECT_EQ(follower.waypoint(p), cv::Point2d(2.0, 1.0));
 }
 
+TEST(PathFollower, AWaypointTheBaseStopsAtIsPassedEvenWithoutASightLineToTheNext)
+{
+  // The base stops within its own goal tolerance (0.2 m) of a waypoint; one held there because the straight
+  // line on to the next crosses the inflation of a wall beside it parked the base until the task failed
+  // (mission_eval tune seed 129).
+  TaskParameters parameters;
+  cv::Mat1b cells(100, 100, uchar(0));
+  cv::rectangle(cells, cv::Rect(49, 0, 3, 60), 100, cv::FILLED);  // a wall along x = 0 from y = -5 to 1
+  const OccupancyMap map(cells, -5, -5, 0.1);
+  Percept p;
+  p.pose_valid = true;
+  p.pose = {-2.0, -2.0, 0.0};
+  p.map = map;
+  PathFollower follower(parameters);
+  follower.setGoal({2.0, -2.0});
+  follower.waypoint(p);
+  const std::vector<cv::Point2d> plan = follower.waypoints();
+  ASSERT_GE(plan.size(), 3u) << "the way leads round the wall's end";
+  const cv::Mat1b blocked = map.inflatedObstacles(40, parameters.robot_radius + parameters.inflation_margin);
+  // Beside the first waypoint, closer than goal_tolerance, where the line on to the second is not free.
+  bool placed = false;
+  for (int k = 0; k < 16 && !placed; ++k)
+  {
+    const double a = k * M_PI / 8, r = 0.8 * parameters.goal_tolerance;
+    const cv::Point2d here = plan[0] + cv::Point2d(r * std::cos(a), r * std::sin(a));
+    if (GridPlanner::lineOfSight(map, blocked, here, plan[1]))
+      continue;
+    placed = true;
+    p.pose = {here.x, here.y, 0.0};
+  }
+  ASSERT_TRUE(placed) << "no spot beside " << plan[0].x << ", " << plan[0].y << " without a sight line";
+  EXPECT_EQ(follower.waypoint(p), plan[1]);
+  // Farther than goal_tolerance (but within waypoint_tolerance) the sight line still decides: no corner cut.
+  PathFollower again(parameters);
+  p.pose = {-2.0, -2.0, 0.0};
+  again.setGoal({2.0, -2.0});
+  again.waypoint(p);
+  ASSERT_EQ(again.waypoints(), plan);
+  for (int k = 0; k < 16; ++k)
+  {
+    const double a = k * M_PI / 8, r = 0.5 * (parameters.goal_tolerance + parameters.waypoint_tolerance);
+    const cv::Point2d here = plan[0] + cv::Point2d(r * std::cos(a), r * std::sin(a));
+    if (!GridPlanner::lineOfSight(map, blocked, here, plan[1]))
+    {
+      p.pose = {here.x, here.y, 0.0};
+      EXPECT_EQ(again.waypoint(p), plan[0]) << "at " << here.x << ", " << here.y;
+      return;
+    }
+  }
+  ADD_FAILURE() << "no spot without a sight line farther out";
+}
+
 TEST(GridPlanner, NoPathWhenEnclosedOrTheGoalIsBlockedAndEscapesAFromAStartInTheInflation)
 {
   cv::Mat1b cells(50, 50, uchar(0));

@@ -67,6 +67,7 @@ private:
   double tolerance_ = 0;  ///< [m]
   PathFollower path_;
   double stuck_since_ = -1;  ///< time the base was first seen trapped/faulted/unlocalised, -1 = not
+  double blocked_at_ = -1;   ///< time of the last PathFollower::blockAhead() of this stuck spell
   bool in_reach_ = false;
 };
 }  // namespace biovision_tasks

@@ -47,7 +47,7 @@ struct TaskParameters
   /// run, none repeated) ended searches at a wrong place; the real target is named frame after frame.
   double confirm_distance = 2.0;
   double confirm_time = 10.0;     ///< [s] the second sighting comes at most this long after the first
-  double search_timeout = 240.0;  ///< [s] default time-out of `search`
+  double search_timeout = 300.0;  ///< [s] default time-out of `search` (mission_eval tune seeds 101-300: 240 / 300 / 360 s completed 177 / 185 / 185)
   double go_to_timeout = 240.0;   ///< [s] default time-out of `go_to` and `return_home`
 
   /// Throws std::invalid_argument naming the field and its range.

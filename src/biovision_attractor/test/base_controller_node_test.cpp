@@ -137,8 +137,6 @@ public:
   ros::NodeHandle nh_;
   biovision_sim::FloorPlan plan_;
   ros::Publisher stm_pub_, goal_pub_;
-  ros::Subscriber pose_sub_, cmd_sub_, collision_sub_, state_sub_;
-  ros::Timer stm_timer_;
   std::mutex mutex_;
   geometry_msgs::PoseStamped pose_;
   bool have_pose_ = false;
@@ -148,6 +146,10 @@ public:
   std::string behaviour_;
   std::atomic<int> collisions_{0}, cmds_{0};
   std::atomic<bool> publish_stm_{true}, future_stm_{false};
+  // Last: destroyed first (unsubscribing waits for a callback in progress), so no spinner thread writes
+  // into the members above once they are gone.
+  ros::Subscriber pose_sub_, cmd_sub_, collision_sub_, state_sub_;
+  ros::Timer stm_timer_;
 };
 }  // namespace
 

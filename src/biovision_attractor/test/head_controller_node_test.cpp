@@ -63,6 +63,9 @@ public:
   }
   ~Rig()
   {
+    // Before any member goes: the spinner (main's) keeps running the command callbacks that write them.
+    pan_sub_.shutdown();
+    tilt_sub_.shutdown();
     stop_ = true;
     thread_.join();
   }

@@ -173,9 +173,10 @@ class GoalPatrol
 {
 public:
   explicit GoalPatrol(ros::NodeHandle& nh)
-    : pub_(nh.advertise<geometry_msgs::PoseStamped>("goal", 1, true)),
-      sub_(nh.subscribe("attractor/base", 20, &GoalPatrol::onState, this))
+    : pub_(nh.advertise<geometry_msgs::PoseStamped>("goal", 1, true))
   {
+    // Subscribed once every member exists; sub_ is the last member, so it also goes first.
+    sub_ = nh.subscribe("attractor/base", 20, &GoalPatrol::onState, this);
   }
   void start() { send(); }
   int sent() const { return sent_; }
@@ -216,11 +217,11 @@ private:
       send();
   }
   ros::Publisher pub_;
-  ros::Subscriber sub_;
   std::atomic<int> sent_{0}, with_repellers_{0};
   ros::WallTime last_sent_;
   mutable std::mutex mutex_;
   std::string behaviours_;
+  ros::Subscriber sub_;
 };
 
 // Share of the panel tile's pixels that are the "no data" grey (60, 60, 60).

@@ -103,6 +103,7 @@ protected:
   }
   void TearDown() override
   {
+    joints_.shutdown();  // main's spinner runs on: no callback into this fixture once it is destroyed
     if (!texture_.empty())
       fs::remove(texture_);
   }

@@ -170,8 +170,12 @@ protected:
   }
   void TearDown() override
   {
+    // The spinner outlives every member (declared first): stop the callbacks before mutex_ and diagnostics_ go.
+    diagnostics_sub_.shutdown();
+    spinner_.stop();
     stop_ = true;
-    publisher_.join();
+    if (publisher_.joinable())  // SetUp may have failed before starting it
+      publisher_.join();
     fs::remove_all(dir_);
   }
 

@@ -69,11 +69,13 @@ private:
   }
 
   std::string name_;
-  ros::Subscriber sub_;
   std::atomic<unsigned> received_{0};
   std::atomic<int> max_level_{0};
   mutable std::mutex mutex_;
   std::string last_message_;
+  // Last: destroyed first, so a spinner thread's callback never writes into members already gone
+  // (unsubscribing waits for a callback in progress).
+  ros::Subscriber sub_;
 };
 
 /// Keeps every message of one topic (bounded by `capacity`, oldest dropped).
@@ -112,10 +114,10 @@ public:
 
 private:
   size_t capacity_;
-  ros::Subscriber sub_;
   mutable std::mutex mutex_;
   std::vector<typename Message::ConstPtr> messages_;
   std::atomic<size_t> count_{0};
+  ros::Subscriber sub_;  // last: destroyed before what its callback writes (see DiagnosticsWatch)
 };
 /// Starts `args` (argv[0] looked up on PATH) as a child process, with DISPLAY set to `display` unless empty
 /// (an Xvfb for rviz). Returns its pid; the child exits 127 when the program cannot be run.

@@ -231,6 +231,12 @@ BaseAttractor::Output BaseAttractor::update(const std::vector<Sector>& stm, doub
       out.forcelet[i] = repulsion(0.0, out.angle[i], 1.0, out.strength[i], 2 * out.sigma[i] * out.sigma[i]);
       rate += out.forcelet[i];
     }
+    // Blocked (it stops and only turns) with the goal behind: the goal alone turns it round. A disc turning
+    // in place hits nothing, while repellers on both sides of a gap narrower than its swept corridor held the
+    // heading along the gap for good (mission_eval in the corridor world: wedged between a wall and a plant
+    // for 200 s; tune seeds 101-300 / 301-500 completed 185 / 174 -> 185 / 178 of 200).
+    if (out.front_clearance < p_.safety_distance && std::abs(goal_bearing) > M_PI / 2)
+      rate = out.goal_forcelet;
     out.heading_rate = rate;
     {
       target_angular = std::clamp(rate, -p_.max_angular, p_.max_angular);

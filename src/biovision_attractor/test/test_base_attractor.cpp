@@ -161,6 +161,29 @@ TEST(BaseAttractorFixedPoints, StopsAtTheSafetyDistanceAndAtTheGoal)
   EXPECT_EQ(reached.angular, 0.0);
 }
 
+TEST(BaseAttractorFixedPoints, BlockedInANarrowGapWithTheGoalBehindTurnsRoundToIt)
+{
+  // Wedged in a gap narrower than the swept corridor (a wall on one side, a plant on the other, 0.14 and
+  // 0.24 m from the disc) with the goal behind: stopped, it must turn towards the goal, not be held
+  // facing along the gap by the two repellers (mission_eval in the corridor world).
+  BaseAttractor a{BaseAttractorParameters()};
+  const double r = a.parameters().robot_radius;
+  auto gap = freeSectors();  // as the STM held it there: free ahead, both sides near
+  for (int d : {-80, -60})
+    gap[at(d)].distance = r + 0.24;
+  for (int d : {60, 80})
+    gap[at(d)].distance = r + 0.14;
+  for (double bearing : {2.5, -2.5})
+  {
+    a.reset();
+    const auto out = settle(a, gap, bearing);
+    EXPECT_EQ(out.status, BaseAttractor::Status::kBlocked) << bearing;
+    EXPECT_EQ(out.linear, 0.0) << bearing;
+    EXPECT_GT(out.angular * (bearing > 0 ? 1 : -1), 0.5 * a.parameters().alpha_goal * std::sin(std::abs(bearing)))
+        << "turns towards the goal at " << bearing << " rad";
+  }
+}
+
 TEST(BaseAttractorFixedPoints, NoProgressIsReportedAsTrappedAndTurnsInPlace)
 {
   BaseAttractorParameters p;

@@ -172,8 +172,7 @@ std::vector<std::string> displayNames(const std::string& config)
 class GoalPatrol
 {
 public:
-  explicit GoalPatrol(ros::NodeHandle& nh)
-    : pub_(nh.advertise<geometry_msgs::PoseStamped>("goal", 1, true))
+  explicit GoalPatrol(ros::NodeHandle& nh) : pub_(nh.advertise<geometry_msgs::PoseStamped>("goal", 1, true))
   {
     // Subscribed once every member exists; sub_ is the last member, so it also goes first.
     sub_ = nh.subscribe("attractor/base", 20, &GoalPatrol::onState, this);

@@ -140,8 +140,8 @@ TEST(Sim, TopicsRatesTfHeadAndBase)
   {
     const Counter& c = counters.at(t);
     EXPECT_NEAR(c.rate(), 10.0, 0.5) << t;
-    EXPECT_LE(c.missed(), c.count() / (t.find("raw") != std::string::npos ? 10 : 5)) << t << ": " << c.count()
-                                                                                  << " frames";
+    EXPECT_LE(c.missed(), c.count() / (t.find("raw") != std::string::npos ? 10 : 5))
+        << t << ": " << c.count() << " frames";
   }
   EXPECT_NEAR(counters.at("joints").rate(), 50.0, 2.5);
   EXPECT_NEAR(counters.at("odom").rate(), 50.0, 2.5);

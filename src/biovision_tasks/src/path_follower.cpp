@@ -76,9 +76,8 @@ cv::Point2d PathFollower::waypoint(const Percept& percept)
   while (waypoints_.size() > 1)
   {
     const double d = std::hypot(here.x - waypoints_.front().x, here.y - waypoints_.front().y);
-    if (d > parameters_.waypoint_tolerance ||
-        (d > parameters_.goal_tolerance && !blocked_.empty() &&
-         !GridPlanner::lineOfSight(percept.map, blocked_, here, waypoints_[1])))
+    if (d > parameters_.waypoint_tolerance || (d > parameters_.goal_tolerance && !blocked_.empty() &&
+                                               !GridPlanner::lineOfSight(percept.map, blocked_, here, waypoints_[1])))
       break;
     waypoints_.erase(waypoints_.begin());
   }

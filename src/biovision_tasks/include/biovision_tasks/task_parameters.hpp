@@ -46,9 +46,10 @@ struct TaskParameters
   /// recognitions of the target on the corridor's walls (3 of 751 `objects` messages in a mission.test
   /// run, none repeated) ended searches at a wrong place; the real target is named frame after frame.
   double confirm_distance = 2.0;
-  double confirm_time = 10.0;     ///< [s] the second sighting comes at most this long after the first
-  double search_timeout = 300.0;  ///< [s] default time-out of `search` (mission_eval tune seeds 101-300: 240 / 300 / 360 s completed 177 / 185 / 185)
-  double go_to_timeout = 240.0;   ///< [s] default time-out of `go_to` and `return_home`
+  double confirm_time = 10.0;  ///< [s] the second sighting comes at most this long after the first
+  /// [s] default time-out of `search` (mission_eval tune seeds 101-300: 240 / 300 / 360 s completed 177 / 185 / 185)
+  double search_timeout = 300.0;
+  double go_to_timeout = 240.0;  ///< [s] default time-out of `go_to` and `return_home`
 
   /// Throws std::invalid_argument naming the field and its range.
   void validate() const;

@@ -41,7 +41,9 @@ TEST(CpuFeatures, PathsFollowTheFeaturesAndTheDescriptionNamesThem)
   EXPECT_EQ(has_avx512, f.avx512f && f.avx512vpopcntdq);
   EXPECT_EQ(std::find(paths.begin(), paths.end(), HammingPath::Popcnt) != paths.end(), f.popcnt);
   if (f.avx2)
-    EXPECT_NE(f.describe().find("avx2"), std::string::npos);
+  {
+    EXPECT_NE(f.describe().find("avx2"), std::string::npos);  // braces: the macro ends in an if/else
+  }
   EXPECT_FALSE(f.describe().empty());
 }
 

@@ -319,7 +319,7 @@ std::vector<std::string> RunReport::write() const
   if (have_report)
   {
     const bool ok = report.value("ok", false);
-    page << "<p class=\"" << (ok ? "" : "bad") << "\">Result: <b>" << (ok ? "OK" : "FAILED") << "</b> (listened "
+    page << "<p class=\"" << (ok ? "" : "bad") << "\">Topics and tf: <b>" << (ok ? "OK" : "FAILED") << "</b> (listened "
          << formatNumber(report.value("listened_s", 0.0), 1) << " s)</p>\n";
   }
   if (have_mission)

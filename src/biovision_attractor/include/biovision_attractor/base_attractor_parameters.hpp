@@ -6,7 +6,7 @@
 namespace biovision_attractor
 {
 /// Constants of the base's attractor dynamics (thesis §5.4, read as in the package README and
-/// /work/shared/notes §2: the printed equations' sign, exponent and units fixed, the repeller model of
+/// ../shared/notes §2: the printed equations' sign, exponent and units fixed, the repeller model of
 /// Bicho et al. 1998 that the thesis follows, and the forward-speed dynamics the thesis leaves out).
 /// Every field is a parameter of the base_controller node (config/base_controller.yaml,
 /// cfg/BaseController.cfg) under its own name. Units: metres, radians, seconds.

@@ -1,10 +1,48 @@
 """Summarises JUnit XML files (gtest, rostest, rosunit) into 'N passed, N failed, N skipped'.
 
 A result file whose name says MISSING (rosunit writes one when a test binary died before writing
-its own) counts as a failure, and so does a run with no test at all."""
+its own) counts as a failure, and so does a run with no test at all. Each failure is printed with
+its message and, for a rostest, the lines of its captured output that say how the test process
+ended (died with a signal, timed out, no results): CI shows only the tail of make test's output,
+so the cause has to be there, next to the summary line."""
+import glob
 import pathlib
+import re
 import sys
 import xml.etree.ElementTree as ET
+
+DETAIL_LINES = 12
+LOG_TAIL_LINES = 15
+# What rostest/roslaunch print when a test process ends badly.
+ENDING = re.compile(r"process has died|exit code|timed out|max time|time limit|did not generate|"
+                    r"Traceback|Error|FAILED|Failure", re.IGNORECASE)
+
+
+def details(case):
+    """The failure's message and text, then the telling lines of the captured output."""
+    lines = []
+    for tag in ("failure", "error"):
+        for node in case.findall(tag):
+            if node.get("message"):
+                lines.append(node.get("message"))
+            lines += (node.text or "").strip().splitlines()
+    out = "\n".join(n.text or "" for n in case.iter() if n.tag in ("system-out", "system-err"))
+    lines += [line for line in out.splitlines() if ENDING.search(line)]
+    lines = [strip(line) for line in lines if line.strip()]
+    if len(lines) > DETAIL_LINES:
+        lines = lines[:DETAIL_LINES] + [f"... ({len(lines) - DETAIL_LINES} more lines in the result file)"]
+    # The test process's own output (which gtest case ran last, its messages) is in the log rostest names.
+    for pattern in re.findall(r"log file: (\S+)", strip(out)):
+        for log in sorted(glob.glob(pattern)):
+            tail = pathlib.Path(log).read_text(errors="replace").splitlines()[-LOG_TAIL_LINES:]
+            lines.append(f"last {len(tail)} lines of {log}:")
+            lines += ["  " + strip(line) for line in tail]
+    return lines
+
+
+def strip(line):
+    # Colour codes, raw or as rostest escapes them ("&#x001B;[0m").
+    return re.sub(r"(\x1b|&#x001B;)\[[0-9;]*m", "", line).strip()
 
 
 def main(root):
@@ -16,20 +54,25 @@ def main(root):
             tree = ET.parse(path)
         except ET.ParseError as err:
             failed += 1
-            failures.append(f"{path}: unreadable result ({err})")
+            failures.append((f"{path}: unreadable result ({err})", []))
             continue
-        cases = tree.getroot().iter("testcase")
-        for case in cases:
+        suite_out = [n for n in tree.getroot().iter() if n.tag in ("system-out", "system-err")]
+        for case in tree.getroot().iter("testcase"):
             name = f"{case.get('classname', '')}.{case.get('name', '')}"
             if case.find("failure") is not None or case.find("error") is not None:
                 failed += 1
-                failures.append(f"{path.parent.name}: {name}")
+                # rostest puts the captured output beside the test cases, not inside them.
+                holder = ET.Element("testcase")
+                holder.extend(list(case) + suite_out)
+                failures.append((f"{path.parent.name}: {name} ({path.name})", details(holder)))
             elif case.find("skipped") is not None or case.get("status") == "notrun":
                 skipped += 1
             else:
                 passed += 1
-    for line in failures:
-        print(f"FAILED: {line}")
+    for title, lines in failures:
+        print(f"FAILED: {title}")
+        for line in lines:
+            print(f"    {line}")
     print(f"{passed} passed, {failed} failed, {skipped} skipped")
     if passed + failed == 0:
         print("no test ran")

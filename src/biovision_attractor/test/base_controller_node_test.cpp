@@ -266,7 +266,5 @@ TEST(BaseControllerNode, HoldStopAndBadInputStopTheBase)
 
 int main(int argc, char** argv)
 {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_base_controller_node");
-  return RUN_ALL_TESTS();
+  return biovision_ros_common::RosTestRun(argc, argv, "test_base_controller_node", 0).run();  // the fixtures spin
 }

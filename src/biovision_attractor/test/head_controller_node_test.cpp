@@ -371,14 +371,10 @@ TEST(HeadControllerNode, StaleJointStatesStopTheCommands)
 
 int main(int argc, char** argv)
 {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "head_controller_node_test");
-  ros::NodeHandle nh;
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  Rig world(nh);
+  biovision_ros_common::RosTestRun tests(argc, argv, "head_controller_node_test", 2);
+  Rig world(tests.nodeHandle());
   rig = &world;
-  const int result = RUN_ALL_TESTS();
+  const int result = tests.run();
   rig = nullptr;
   return result;
 }

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include <biovision_ros_common/rostest_helpers.hpp>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
@@ -122,9 +123,5 @@ TEST(ClosedLoop, HeadExploresTheTableTop)
 
 int main(int argc, char** argv)
 {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "closed_loop_test");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  return RUN_ALL_TESTS();
+  return biovision_ros_common::RosTestRun(argc, argv, "closed_loop_test", 2).run();
 }

@@ -6,6 +6,7 @@
 #include <map>
 #include <mutex>
 
+#include <biovision_ros_common/rostest_helpers.hpp>
 #include <cv_bridge/cv_bridge.h>
 #include <gtest/gtest.h>
 #include <opencv2/features2d.hpp>
@@ -94,9 +95,5 @@ TEST(EurocReplay, RealPairsComeOutRectified)
 
 int main(int argc, char** argv)
 {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "euroc_replay_test");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  return RUN_ALL_TESTS();
+  return biovision_ros_common::RosTestRun(argc, argv, "euroc_replay_test", 2).run();
 }

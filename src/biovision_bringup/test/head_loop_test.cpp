@@ -64,9 +64,5 @@ TEST(HeadLoop, TheHeadControllerTurnsTheEmulatedServosTowardsASalientObject)
 
 int main(int argc, char** argv)
 {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "head_loop_test");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  return RUN_ALL_TESTS();
+  return biovision_ros_common::RosTestRun(argc, argv, "head_loop_test", 2).run();
 }

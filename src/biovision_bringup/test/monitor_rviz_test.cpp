@@ -457,9 +457,5 @@ TEST(MonitorRviz, EveryViewHasContentAndThePanelHasEightTiles)
 
 int main(int argc, char** argv)
 {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_monitor_rviz");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  return RUN_ALL_TESTS();
+  return biovision_ros_common::RosTestRun(argc, argv, "test_monitor_rviz", 2).run();
 }

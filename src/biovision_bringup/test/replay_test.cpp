@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include <biovision_ros_common/rostest_helpers.hpp>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
@@ -52,9 +53,5 @@ TEST(Replay, CommittedBagPublishesTheRecordedTopics)
 
 int main(int argc, char** argv)
 {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "replay_test");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  return RUN_ALL_TESTS();
+  return biovision_ros_common::RosTestRun(argc, argv, "replay_test", 2).run();
 }

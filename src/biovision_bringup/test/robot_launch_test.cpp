@@ -68,9 +68,5 @@ TEST(RobotLaunch, TheDriversPublishTheSimulatorsTopicsAndTakeItsCommands)
 
 int main(int argc, char** argv)
 {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "robot_launch_test");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  return RUN_ALL_TESTS();
+  return biovision_ros_common::RosTestRun(argc, argv, "robot_launch_test", 2).run();
 }

@@ -8,6 +8,7 @@
 #include <mutex>
 #include <vector>
 
+#include <biovision_ros_common/rostest_helpers.hpp>
 #include <geometry_msgs/Twist.h>
 #include <gtest/gtest.h>
 #include <nav_msgs/Odometry.h>
@@ -196,9 +197,5 @@ TEST(Sim, TopicsRatesTfHeadAndBase)
 
 int main(int argc, char** argv)
 {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "sim_node_test");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  return RUN_ALL_TESTS();
+  return biovision_ros_common::RosTestRun(argc, argv, "sim_node_test", 2).run();
 }

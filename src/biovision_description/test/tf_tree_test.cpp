@@ -2,6 +2,7 @@
 // they are one baseline apart, the cameras sit at mast height, and the tree follows the pan joint.
 #include <cmath>
 
+#include <biovision_ros_common/rostest_helpers.hpp>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
@@ -108,9 +109,5 @@ TEST_F(TfTreeTest, RightOpticalIsPlusXOfLeft)
 
 int main(int argc, char** argv)
 {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "tf_tree_test");
-  ros::AsyncSpinner spinner(1);
-  spinner.start();
-  return RUN_ALL_TESTS();
+  return biovision_ros_common::RosTestRun(argc, argv, "tf_tree_test", 1).run();
 }

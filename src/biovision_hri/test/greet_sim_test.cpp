@@ -235,9 +235,5 @@ TEST_F(GreetSim, TheFaceOfThePersonIsFoundAndCentredAndStopGivesTheHeadBack)
 
 int main(int argc, char** argv)
 {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "greet_sim_test");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  return RUN_ALL_TESTS();
+  return biovision_ros_common::RosTestRun(argc, argv, "greet_sim_test", 2).run();
 }

@@ -187,9 +187,5 @@ TEST_F(HriNode, GreetLooksUpAndTurnsTowardsTheFaceWithinTheLimits)
 
 int main(int argc, char** argv)
 {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "hri_node_test");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  return RUN_ALL_TESTS();
+  return biovision_ros_common::RosTestRun(argc, argv, "hri_node_test", 2).run();
 }

@@ -184,10 +184,5 @@ TEST_F(MemorySim, ARecognisedObjectIsRememberedListedQueriedAndForgotten)
 
 int main(int argc, char** argv)
 {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "memory_sim_test");
-  ros::NodeHandle nh;
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  return RUN_ALL_TESTS();
+  return biovision_ros_common::RosTestRun(argc, argv, "memory_sim_test", 2).run();
 }

@@ -71,9 +71,5 @@ TEST(MonitorClockJump, ABackwardJumpForgetsTheInputs)
 
 int main(int argc, char** argv)
 {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_monitor_clock_jump");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  return RUN_ALL_TESTS();
+  return biovision_ros_common::RosTestRun(argc, argv, "test_monitor_clock_jump", 2).run();
 }

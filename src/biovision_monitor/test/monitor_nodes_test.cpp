@@ -129,9 +129,5 @@ TEST(MonitorNodes, LazyThenEightTilesAndAPlotThenBadInputIsReported)
 
 int main(int argc, char** argv)
 {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_monitor_nodes");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  return RUN_ALL_TESTS();
+  return biovision_ros_common::RosTestRun(argc, argv, "test_monitor_nodes", 2).run();
 }

@@ -82,9 +82,5 @@ TEST(RvizDisplayStatus, MissingClassIsAnErrorWrongTopicTypeIsNotOkTheRestOk)
 
 int main(int argc, char** argv)
 {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_rviz_display_status");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  return RUN_ALL_TESTS();
+  return biovision_ros_common::RosTestRun(argc, argv, "test_rviz_display_status", 2).run();
 }

@@ -6,7 +6,6 @@
 
 #include <gtest/gtest.h>
 
-#include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -27,6 +26,7 @@
 
 #include <biovision_msgs/LearnObject.h>
 #include <biovision_msgs/ListObjects.h>
+#include <biovision_ros_common/rostest_helpers.hpp>
 #include <cv_bridge/cv_bridge.h>
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <opencv2/imgcodecs.hpp>
@@ -79,19 +79,7 @@ public:
     std::vector<std::string> args{other ? other : BIOVISION_RECOGNITION_NODE, "__name:=recognition",
                                   "image:=camera/image", "_lazy:=false"};
     args.insert(args.end(), params.begin(), params.end());
-    pid_ = ::fork();
-    if (pid_ == 0)
-    {
-      const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-      ::dup2(fd, 1);
-      ::dup2(fd, 2);
-      std::vector<char*> argv;
-      for (auto& a : args)
-        argv.push_back(const_cast<char*>(a.c_str()));
-      argv.push_back(nullptr);
-      ::execv(argv[0], argv.data());
-      ::_exit(127);
-    }
+    pid_ = biovision_ros_common::spawnProcess(args, "", log);
   }
   ~NodeProcess()
   {
@@ -434,7 +422,5 @@ TEST_F(Persistence, ADamagedDescriptorModelStopsTheNodeWithAClearMessage)
 
 int main(int argc, char** argv)
 {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "recognition_persistence_test");
-  return RUN_ALL_TESTS();
+  return biovision_ros_common::RosTestRun(argc, argv, "recognition_persistence_test", 0).run();  // fixtures spin
 }

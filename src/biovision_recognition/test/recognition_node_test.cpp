@@ -12,6 +12,7 @@
 #include <biovision_msgs/ListObjects.h>
 #include <biovision_msgs/RecognizedObjectArray.h>
 #include <biovision_msgs/SalientRegionArray.h>
+#include <biovision_ros_common/rostest_helpers.hpp>
 #include <cv_bridge/cv_bridge.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -264,7 +265,5 @@ TEST_F(RecognitionNode, LearnRefusesBoxesThatAreNotARegionAndLabelsTheMemoryCann
 
 int main(int argc, char** argv)
 {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "recognition_node_test");
-  return RUN_ALL_TESTS();
+  return biovision_ros_common::RosTestRun(argc, argv, "recognition_node_test", 0).run();  // the fixtures spin
 }

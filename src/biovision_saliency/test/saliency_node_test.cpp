@@ -4,6 +4,7 @@
 #include <mutex>
 
 #include <biovision_msgs/SalientRegionArray.h>
+#include <biovision_ros_common/rostest_helpers.hpp>
 #include <cv_bridge/cv_bridge.h>
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <gtest/gtest.h>
@@ -131,9 +132,5 @@ TEST_F(SaliencyNodeTest, RegionsAtTheInputRateNearObjectFirst)
 
 int main(int argc, char** argv)
 {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "saliency_node_test");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  return RUN_ALL_TESTS();
+  return biovision_ros_common::RosTestRun(argc, argv, "saliency_node_test", 2).run();
 }

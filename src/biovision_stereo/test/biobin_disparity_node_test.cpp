@@ -5,6 +5,7 @@
 #include <cmath>
 #include <mutex>
 
+#include <biovision_ros_common/rostest_helpers.hpp>
 #include <cv_bridge/cv_bridge.h>
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <gtest/gtest.h>
@@ -230,9 +231,5 @@ TEST_F(BioBinDisparityNodeTest, LeftAndRightFocalLengthsThatDifferAreRefusedWith
 
 int main(int argc, char** argv)
 {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "biobin_disparity_node_test");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  return RUN_ALL_TESTS();
+  return biovision_ros_common::RosTestRun(argc, argv, "biobin_disparity_node_test", 2).run();
 }

@@ -89,7 +89,5 @@ TEST(TaskManagerNode, ExecutesCancelsAndRefusesTasks)
 
 int main(int argc, char** argv)
 {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "task_manager_node_test");
-  return RUN_ALL_TESTS();
+  return biovision_ros_common::RosTestRun(argc, argv, "task_manager_node_test", 0).run();  // the fixtures spin
 }

@@ -73,9 +73,5 @@ TEST_F(ClockJumpTest, DiagnosticsAndOutputContinueAfterTimeJumpsBack)
 
 int main(int argc, char** argv)
 {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_v1_clock_jump");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  return RUN_ALL_TESTS();
+  return biovision_ros_common::RosTestRun(argc, argv, "test_v1_clock_jump", 2).run();
 }

@@ -118,9 +118,5 @@ TEST_F(V1CellsNodeTest, LazySubscriptionKeypointsBadInputAndRecovery)
 
 int main(int argc, char** argv)
 {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "v1_cells_node_test");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  return RUN_ALL_TESTS();
+  return biovision_ros_common::RosTestRun(argc, argv, "v1_cells_node_test", 2).run();
 }

@@ -81,11 +81,9 @@ TEST(Bumblebee2DriverNode, NoCameraIsADiagnosticsErrorAndTheNodeKeepsRetrying)
 
 int main(int argc, char** argv)
 {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "bumblebee2_driver_node_test");
-  ros::NodeHandle pnh("~");
+  biovision_ros_common::RosTestRun tests(argc, argv, "bumblebee2_driver_node_test", 2);
   std::string path;
-  pnh.getParam("frame_file", path);
+  ros::NodeHandle("~").getParam("frame_file", path);
   std::ifstream in(path, std::ios::binary);
   g_raw.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   if (g_raw.size() != 64u * 48u * 2u)
@@ -93,7 +91,5 @@ int main(int argc, char** argv)
     ROS_FATAL("cannot read the frame file %s", path.c_str());
     return 1;
   }
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  return RUN_ALL_TESTS();
+  return tests.run();
 }

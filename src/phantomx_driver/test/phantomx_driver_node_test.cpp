@@ -141,13 +141,11 @@ TEST_F(PhantomXDriverNode, AnOverloadSwitchesTheTorqueOffWithAnError)
 
 int main(int argc, char** argv)
 {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "phantomx_driver_node_test");
-  ros::NodeHandle pnh("~");
+  biovision_ros_common::RosTestRun tests(argc, argv, "phantomx_driver_node_test", 0);  // the fixtures spin
   std::string port;
-  pnh.param<std::string>("port", port, "/tmp/biovision_rostest_phantomx");
+  ros::NodeHandle("~").param<std::string>("port", port, "/tmp/biovision_rostest_phantomx");
   g_servos = std::make_unique<phantomx_driver::Ax12BusEmulator>(std::vector<uint8_t>{1, 2}, port);
-  const int result = RUN_ALL_TESTS();
+  const int result = tests.run();
   g_servos.reset();
   return result;
 }

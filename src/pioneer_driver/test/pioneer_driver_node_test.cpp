@@ -188,13 +188,11 @@ TEST_F(PioneerDriverNode, APulledCableIsAnErrorThenTheDriverReconnects)
 
 int main(int argc, char** argv)
 {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "pioneer_driver_node_test");
-  ros::NodeHandle pnh("~");
+  biovision_ros_common::RosTestRun tests(argc, argv, "pioneer_driver_node_test", 0);  // the fixtures spin
   std::string port;
-  pnh.param<std::string>("port", port, "/tmp/biovision_rostest_pioneer");
+  ros::NodeHandle("~").param<std::string>("port", port, "/tmp/biovision_rostest_pioneer");
   g_robot = std::make_unique<pioneer_driver::ArcosEmulator>(port);
-  const int result = RUN_ALL_TESTS();
+  const int result = tests.run();
   g_robot.reset();
   return result;
 }

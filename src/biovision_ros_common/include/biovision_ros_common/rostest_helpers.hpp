@@ -1,23 +1,69 @@
 #pragma once
 
-// What the rostest gtests of BioVision nodes share: waiting on a condition in wall time (sim time may be
-// paused), watching a node's diagnostics, and collecting messages.
+// What the rostest gtests of BioVision nodes share: the test binary's main (RosTestRun), waiting on a
+// condition in wall time (sim time may be paused), watching a node's diagnostics, collecting messages,
+// and child processes.
 
 #include <atomic>
 #include <csignal>
 #include <cstdlib>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
 
+#include <fcntl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <diagnostic_msgs/DiagnosticArray.h>
+#include <gtest/gtest.h>
 #include <ros/ros.h>
 
 namespace biovision_ros_common
 {
+/// The main of a rostest gtest binary: initialises gtest and roscpp, keeps roscpp started for the whole
+/// run and spins the global callback queue on `spinner_threads` threads (0 when the fixtures run their own
+/// spinners). Without the run's own NodeHandle, the last NodeHandle of a fixture going away calls
+/// ros::shutdown() — under the spinner's threads — and the next test restarts roscpp; a crash in that
+/// rarely used path kills the binary before gtest writes its results (CI saw such deaths, rostest
+/// reporting only "did not generate test results").
+///
+///   int main(int argc, char** argv) { return biovision_ros_common::RosTestRun(argc, argv, "my_test", 2).run(); }
+class RosTestRun
+{
+public:
+  RosTestRun(int& argc, char** argv, const std::string& node_name, unsigned spinner_threads)
+  {
+    testing::InitGoogleTest(&argc, argv);
+    ros::init(argc, argv, node_name);
+    nh_ = std::make_unique<ros::NodeHandle>();
+    if (spinner_threads > 0)
+    {
+      spinner_ = std::make_unique<ros::AsyncSpinner>(spinner_threads);
+      spinner_->start();
+    }
+  }
+  RosTestRun(const RosTestRun&) = delete;
+  RosTestRun& operator=(const RosTestRun&) = delete;
+  /// Stops the spinner first, then shuts roscpp down (the NodeHandle was the last one).
+  ~RosTestRun()
+  {
+    if (spinner_)
+      spinner_->stop();
+    spinner_.reset();
+    nh_.reset();
+    ros::shutdown();
+  }
+  ros::NodeHandle& nodeHandle() { return *nh_; }
+  /// RUN_ALL_TESTS(); its result is main's exit code.
+  int run() { return RUN_ALL_TESTS(); }
+
+private:
+  std::unique_ptr<ros::NodeHandle> nh_;
+  std::unique_ptr<ros::AsyncSpinner> spinner_;
+};
+
 /// Polls `condition` every 20 ms for up to `seconds` of wall time; true as soon as it holds.
 template <typename Condition>
 bool waitFor(Condition condition, double seconds)
@@ -120,21 +166,38 @@ private:
   ros::Subscriber sub_;  // last: destroyed before what its callback writes (see DiagnosticsWatch)
 };
 /// Starts `args` (argv[0] looked up on PATH) as a child process, with DISPLAY set to `display` unless empty
-/// (an Xvfb for rviz). Returns its pid; the child exits 127 when the program cannot be run.
-inline pid_t spawnProcess(const std::vector<std::string>& args, const std::string& display)
+/// (an Xvfb for rviz) and its stdout and stderr in the file `log` unless empty. Returns its pid; the child
+/// exits 127 when the program cannot be run.
+inline pid_t spawnProcess(const std::vector<std::string>& args, const std::string& display, const std::string& log = "")
 {
+  // Everything allocated before fork(): the test is multi-threaded (spinners), and the child of a
+  // multi-threaded process may only make async-signal-safe calls until it execs.
+  std::vector<char*> argv;
+  for (const auto& a : args)
+    argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  const std::string display_variable = "DISPLAY=" + display;
+  std::vector<char*> env;
+  for (char** e = environ; *e; ++e)
+    if (display.empty() || std::string(*e).rfind("DISPLAY=", 0) != 0)
+      env.push_back(*e);
+  if (!display.empty())
+    env.push_back(const_cast<char*>(display_variable.c_str()));
+  env.push_back(nullptr);
+  const int fd = log.empty() ? -1 : ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   const pid_t pid = fork();
   if (pid == 0)
   {
-    if (!display.empty())
-      setenv("DISPLAY", display.c_str(), 1);
-    std::vector<char*> argv;
-    for (const auto& a : args)
-      argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    execvp(argv[0], argv.data());
+    if (fd >= 0)
+    {
+      dup2(fd, 1);
+      dup2(fd, 2);
+    }
+    execvpe(argv[0], argv.data(), env.data());
     _exit(127);
   }
+  if (fd >= 0)
+    close(fd);
   return pid;
 }
 

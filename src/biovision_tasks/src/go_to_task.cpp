@@ -70,6 +70,7 @@ void GoToTask::onStart(const Percept& percept)
   std::string why;
   resolved_ = resolve(percept, why);
   stuck_since_ = -1;
+  retracing_ = false;
   if (resolved_)
     path_.setGoal(aimPoint(percept), goal_.target != Target::Forward);
 }
@@ -109,12 +110,23 @@ TaskState GoToTask::onConclude(const Percept& percept)
     stuck_since_ = percept.time;
   else if (percept.time - stuck_since_ > parameters_.trapped_timeout)
   {
+    if (goal_.target == Target::Home && !retracing_ && percept.pose_valid && !percept.base_fault)
+    {
+      const auto route = record_->wayBack({percept.pose.x, percept.pose.y});
+      if (route.size() >= 2)
+      {
+        path_.followRoute(route);
+        retracing_ = true;
+        stuck_since_ = -1;
+        return TaskState::Running;
+      }
+    }
     std::ostringstream why;
     if (!percept.pose_valid)
       why << "no localisation for " << parameters_.trapped_timeout << " s";
     else
       why << "the base is " << (percept.base_fault ? "stopped by a fault" : "trapped") << " for "
-          << parameters_.trapped_timeout << " s";
+          << parameters_.trapped_timeout << " s" << (retracing_ ? " on the trail back" : "");
     return fail(why.str());
   }
   return TaskState::Running;

@@ -16,9 +16,22 @@ void PathFollower::setGoal(const cv::Point2d& goal, bool plan)
 {
   goal_ = goal;
   plan_ = plan;
+  route_ = false;
   waypoints_.clear();
   blocked_points_.clear();
   replanSoon();
+}
+
+void PathFollower::followRoute(const std::vector<cv::Point2d>& route)
+{
+  if (route.empty())
+    return;
+  goal_ = route.back();
+  plan_ = false;
+  route_ = true;
+  waypoints_ = route;
+  blocked_points_.clear();
+  blocked_.release();
 }
 
 void PathFollower::blockAhead(const Percept& percept)
@@ -40,7 +53,7 @@ void PathFollower::blockAhead(const Percept& percept)
 
 cv::Point2d PathFollower::waypoint(const Percept& percept)
 {
-  if (waypoints_.empty() || percept.time - planned_at_ >= parameters_.replan_period)
+  if (waypoints_.empty() || (!route_ && percept.time - planned_at_ >= parameters_.replan_period))
   {
     planned_at_ = percept.time;
     waypoints_.clear();

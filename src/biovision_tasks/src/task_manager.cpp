@@ -142,6 +142,7 @@ MotorCommand TaskManager::step(const Percept& input)
     }
     if (have_last_pose_)
       record_->path_length += std::hypot(percept.pose.x - last_pose_.x, percept.pose.y - last_pose_.y);
+    record_->extendTrail(percept.pose.x, percept.pose.y);
     last_pose_ = percept.pose;
     have_last_pose_ = true;
   }

@@ -13,6 +13,7 @@
 #include "biovision_tasks/go_to_task.hpp"
 #include "biovision_tasks/grid_planner.hpp"
 #include "biovision_tasks/macro_task.hpp"
+#include "biovision_tasks/mission_record.hpp"
 #include "biovision_tasks/path_follower.hpp"
 #include "biovision_tasks/search_task.hpp"
 #include "biovision_tasks/task_manager.hpp"
@@ -395,6 +396,104 @@ TEST(ExplorationPlanner, CoverageMemoryStaysBoundedOverALongDrive)
     wanderer.recordVisit(at(k, 0.2 * k, 0.2 * (k % 7)));
   EXPECT_LE(wanderer.visitedCells(), ExplorationPlanner::kMaxCells);
   EXPECT_GT(wanderer.visits({0.2 * 299999, 0.2 * (299999 % 7)}), 0.0);
+}
+
+TEST(GoToTask, ReturnHomeTrappedRetracesTheTrailDrivenThenFailsWhenTrappedAgain)
+{
+  // The base drove home -> (0, 2) -> (3, 2); the straight way back is blocked by something the map does not
+  // hold (mission_eval tune seeds 131, 165: a new obstacle beside the straight line home).
+  TaskParameters p;
+  p.trapped_timeout = 5;
+  TaskManager m(p);
+  double t = 0;
+  for (double y = 0; y <= 2.0; y += 0.05, t += 0.1)
+    m.step(at(t, 0, y));
+  for (double x = 0; x <= 3.0; x += 0.05, t += 0.1)
+    m.step(at(t, x, 2.0));
+  m.add(spec("return_home"));
+  Percept trapped = at(t, 3.0, 2.0);
+  trapped.base_trapped = true;
+  MotorCommand c = m.step(trapped);
+  EXPECT_NEAR(c.goal_x, 0.0, 1e-9) << "no map: straight home first";
+  EXPECT_NEAR(c.goal_y, 0.0, 1e-9);
+  const double start = t;
+  for (; t < start + 6.25; t += 0.5)  // trapped for longer than trapped_timeout
+  {
+    trapped.time = t;
+    c = m.step(trapped);
+  }
+  ASSERT_TRUE(m.finished().empty()) << "failed at once: " << m.finished().back().reason;
+  ASSERT_EQ(c.base, MotorCommand::Base::Goal);
+  EXPECT_NEAR(c.goal_y, 2.0, 0.05) << "the trail back runs along y = 2 first, not straight home";
+  EXPECT_LT(c.goal_x, 3.0);
+  for (; t < start + 13.25; t += 0.5)  // and as long again on the trail
+  {
+    trapped.time = t;
+    m.step(trapped);
+  }
+  ASSERT_FALSE(m.finished().empty());
+  EXPECT_EQ(m.finished().back().state, TaskState::Failed);
+  EXPECT_NE(m.finished().back().reason.find("trapped for 5 s on the trail back"), std::string::npos)
+      << m.finished().back().reason;
+}
+
+TEST(MissionRecord, TheTrailIsSpacedBoundedAndItsWayBackCutsLoops)
+{
+  MissionRecord r;
+  for (int i = 0; i <= 200; ++i)
+    r.extendTrail(0.05 * i, 0);
+  EXPECT_GE(r.trail.size(), 40u);  // one point every 0.2-0.25 m of the 10 m
+  for (size_t i = 1; i < r.trail.size(); ++i)
+  {
+    EXPECT_GE(r.trail[i].x - r.trail[i - 1].x, MissionRecord::kTrailSpacing - 1e-9);
+    EXPECT_LE(r.trail[i].x - r.trail[i - 1].x, MissionRecord::kTrailSpacing + 0.05 + 1e-9);
+  }
+  MissionRecord longest;
+  for (int i = 0; i < 3 * static_cast<int>(MissionRecord::kMaxTrail); ++i)
+    longest.extendTrail(0.3 * i, 0);
+  EXPECT_LE(longest.trail.size(), MissionRecord::kMaxTrail);
+  EXPECT_EQ(longest.trail.front(), cv::Point2d(0, 0)) << "home stays the trail's first point";
+  EXPECT_NEAR(longest.trail.back().x, 0.3 * (3 * MissionRecord::kMaxTrail - 1), 1e-9);
+  // Out to x = 4, back to x = 2 and up to (2, 3): the way back from there skips the excursion to x = 4.
+  MissionRecord loop;
+  for (double x = 0; x <= 4.0; x += 0.05)
+    loop.extendTrail(x, 0);
+  for (double x = 4.0; x >= 2.0; x -= 0.05)
+    loop.extendTrail(x, 0.1);
+  for (double y = 0.1; y <= 3.0; y += 0.05)
+    loop.extendTrail(2.0, y);
+  const auto back = loop.wayBack({2.1, 3.1});
+  ASSERT_GE(back.size(), 2u);
+  EXPECT_NEAR(back.front().x, 2.0, 1e-9);
+  EXPECT_NEAR(back.front().y, 3.0, 0.2);
+  EXPECT_EQ(back.back(), cv::Point2d(0, 0));
+  for (const auto& w : back)
+    EXPECT_LT(w.x, 2.3) << "the loop to x = 4 is cut";
+  for (size_t i = 1; i < back.size(); ++i)
+    EXPECT_LT(std::hypot(back[i].x - back[i - 1].x, back[i].y - back[i - 1].y), 0.41) << "a jump across open ground";
+  EXPECT_TRUE(MissionRecord().wayBack({1, 1}).empty());
+}
+
+TEST(PathFollower, AFixedRouteIsFollowedWithoutReplanning)
+{
+  TaskParameters parameters;
+  Percept p;
+  p.pose_valid = true;
+  p.pose = {0.0, 0.0, 0.0};
+  p.map = wallMap();
+  PathFollower follower(parameters);
+  const std::vector<cv::Point2d> route{{0.0, 0.0}, {0.0, 1.0}, {0.0, 2.0}, {-1.0, 2.0}};
+  follower.followRoute(route);
+  EXPECT_TRUE(follower.followingRoute());
+  EXPECT_EQ(follower.waypoint(p), route[1]) << "the first point, where the base is, is passed";
+  p.time = 10 * parameters.replan_period;
+  follower.blockAhead(p);
+  EXPECT_EQ(follower.waypoint(p), route[1]) << "no replanning, blocked or not";
+  p.pose = {0.0, 1.2, 0.0};  // within waypoint_tolerance of route[1]
+  EXPECT_EQ(follower.waypoint(p), route[2]);
+  EXPECT_EQ(follower.goal(), route.back());
+  follower.setGoal({2.0, 0.0});
+  EXPECT_FALSE(follower.followingRoute());
 }
 
 TEST(PathFollower, BlockAheadPlansRoundWhatStopsTheBase)

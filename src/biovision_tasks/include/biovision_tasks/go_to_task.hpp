@@ -21,7 +21,10 @@ namespace biovision_tasks
 ///
 /// Objective detection: the goal is in reach. Conclusion: within goal_tolerance (a place) or
 /// approach_distance (an object) → Succeeded; the base trapped or faulted for trapped_timeout, no
-/// localisation for as long, or an object never found nor remembered → Failed with the reason.
+/// localisation for as long, or an object never found nor remembered → Failed with the reason. Beyond the
+/// thesis, "return home" trapped for trapped_timeout first retraces the trail it drove
+/// (MissionRecord::wayBack: the planned way may lead past new obstacles the map has not got right) and
+/// fails only when trapped as long again.
 class GoToTask : public Task
 {
 public:
@@ -68,6 +71,7 @@ private:
   PathFollower path_;
   double stuck_since_ = -1;  ///< time the base was first seen trapped/faulted/unlocalised, -1 = not
   double blocked_at_ = -1;   ///< time of the last PathFollower::blockAhead() of this stuck spell
+  bool retracing_ = false;   ///< return home on the trail driven (after a trapped_timeout)
   bool in_reach_ = false;
 };
 }  // namespace biovision_tasks

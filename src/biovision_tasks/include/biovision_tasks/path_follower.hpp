@@ -21,6 +21,10 @@ public:
 
   /// A new goal [m, map]; `plan` false: straight, never over the map (micro-task "forward").
   void setGoal(const cv::Point2d& goal, bool plan = true);
+  /// Follows `route` [m, map] as it is, its last point the goal: no planning, no replanning (blockAhead()
+  /// keeps it); waypoints are passed within waypoint_tolerance. A later setGoal() plans again.
+  void followRoute(const std::vector<cv::Point2d>& route);
+  bool followingRoute() const { return route_; }
   /// Replans at the next waypoint() call.
   void replanSoon() { planned_at_ = -1e18; }
   /// The base is trapped: what stops it is in its STM but not (yet) in the LTM, so the plan keeps leading into
@@ -36,6 +40,7 @@ private:
   TaskParameters parameters_;
   cv::Point2d goal_;
   bool plan_ = true;
+  bool route_ = false;  ///< followRoute(): the waypoints are fixed
   std::vector<cv::Point2d> waypoints_;
   std::vector<cv::Point2d> blocked_points_;  ///< blockAhead()'s discs [m, map]
   cv::Mat1b blocked_;                        ///< the inflated obstacles of the last plan (empty: no map)

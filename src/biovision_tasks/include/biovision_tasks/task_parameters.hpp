@@ -36,7 +36,8 @@ struct TaskParameters
   double home_range_cost = 0.1;   ///< [s of boredom per m] goals far from home cost more, so the robot covers the area
                                   ///< round home before wandering off in a straight line; 0.1 completed the
                                   ///< most missions on mission_eval's tune seeds 101-110 (0.1/0.3/0.5 gave 7/7/4)
-  double trapped_timeout = 20.0;  ///< [s] a base trapped (or faulted) this long fails the task
+  double trapped_timeout = 20.0;  ///< [s] a base trapped (or faulted) this long fails the task (return_home:
+                                  ///< retraces the trail driven first, GoToTask)
   double stall_time = 15.0;     ///< [s] driving without moving stall_distance this long counts as trapped, whatever the
                                 ///< base says: longer than the base's own trap_time (12 s), whose clock each new goal
                                 ///< (a replanned waypoint) restarts

@@ -472,6 +472,10 @@ TEST(MissionRecord, TheTrailIsSpacedBoundedAndItsWayBackCutsLoops)
   for (size_t i = 1; i < back.size(); ++i)
     EXPECT_LT(std::hypot(back[i].x - back[i - 1].x, back[i].y - back[i - 1].y), 0.41) << "a jump across open ground";
   EXPECT_TRUE(MissionRecord().wayBack({1, 1}).empty());
+  const size_t before = r.trail.size();
+  r.extendTrail(std::nan(""), 50.0);
+  r.extendTrail(20.0, std::numeric_limits<double>::infinity());
+  EXPECT_EQ(r.trail.size(), before) << "a non-finite pose never enters the trail";
 }
 
 TEST(PathFollower, AFixedRouteIsFollowedWithoutReplanning)

@@ -26,9 +26,11 @@ struct MissionRecord
   static constexpr double kTrailSpacing = 0.2;  ///< [m]: finer than the base's 0.52 m disc
   static constexpr size_t kMaxTrail = 4096;
 
-  /// Appends (x, y) once it is kTrailSpacing from the last point.
+  /// Appends (x, y) once it is kTrailSpacing from the last point; a non-finite position is ignored.
   void extendTrail(double x, double y)
   {
+    if (!std::isfinite(x) || !std::isfinite(y))
+      return;
     if (!trail.empty() && std::hypot(x - trail.back().x, y - trail.back().y) < kTrailSpacing)
       return;
     if (trail.size() >= kMaxTrail)

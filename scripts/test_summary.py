@@ -18,15 +18,15 @@ ENDING = re.compile(r"process has died|exit code|timed out|max time|time limit|d
                     r"Traceback|Error|FAILED|Failure", re.IGNORECASE)
 
 
-def details(case):
-    """The failure's message and text, then the telling lines of the captured output."""
+def details(case, out):
+    """The failure's message and text, then the telling lines of the result file's captured output `out`
+    (rostest puts it beside the test cases, not inside them) and the tail of the log it names."""
     lines = []
     for tag in ("failure", "error"):
         for node in case.findall(tag):
             if node.get("message"):
                 lines.append(node.get("message"))
             lines += (node.text or "").strip().splitlines()
-    out = "\n".join(n.text or "" for n in case.iter() if n.tag in ("system-out", "system-err"))
     lines += [line for line in out.splitlines() if ENDING.search(line)]
     lines = [strip(line) for line in lines if line.strip()]
     if len(lines) > DETAIL_LINES:
@@ -56,15 +56,12 @@ def main(root):
             failed += 1
             failures.append((f"{path}: unreadable result ({err})", []))
             continue
-        suite_out = [n for n in tree.getroot().iter() if n.tag in ("system-out", "system-err")]
+        out = "\n".join(n.text or "" for n in tree.getroot().iter() if n.tag in ("system-out", "system-err"))
         for case in tree.getroot().iter("testcase"):
             name = f"{case.get('classname', '')}.{case.get('name', '')}"
             if case.find("failure") is not None or case.find("error") is not None:
                 failed += 1
-                # rostest puts the captured output beside the test cases, not inside them.
-                holder = ET.Element("testcase")
-                holder.extend(list(case) + suite_out)
-                failures.append((f"{path.parent.name}: {name} ({path.name})", details(holder)))
+                failures.append((f"{path.parent.name}: {name} ({path.name})", details(case, out)))
             elif case.find("skipped") is not None or case.get("status") == "notrun":
                 skipped += 1
             else:

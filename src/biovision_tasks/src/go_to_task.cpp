@@ -70,7 +70,6 @@ void GoToTask::onStart(const Percept& percept)
   std::string why;
   resolved_ = resolve(percept, why);
   stuck_since_ = -1;
-  retracing_ = false;
   if (resolved_)
     path_.setGoal(aimPoint(percept), goal_.target != Target::Forward);
 }
@@ -110,13 +109,13 @@ TaskState GoToTask::onConclude(const Percept& percept)
     stuck_since_ = percept.time;
   else if (percept.time - stuck_since_ > parameters_.trapped_timeout)
   {
-    if (goal_.target == Target::Home && !retracing_ && percept.pose_valid && !percept.base_fault)
+    // The follower's fixed route is the trail back: retraced once.
+    if (goal_.target == Target::Home && !path_.followingRoute() && percept.pose_valid && !percept.base_fault)
     {
       const auto route = record_->wayBack({percept.pose.x, percept.pose.y});
       if (route.size() >= 2)
       {
         path_.followRoute(route);
-        retracing_ = true;
         stuck_since_ = -1;
         return TaskState::Running;
       }
@@ -126,7 +125,7 @@ TaskState GoToTask::onConclude(const Percept& percept)
       why << "no localisation for " << parameters_.trapped_timeout << " s";
     else
       why << "the base is " << (percept.base_fault ? "stopped by a fault" : "trapped") << " for "
-          << parameters_.trapped_timeout << " s" << (retracing_ ? " on the trail back" : "");
+          << parameters_.trapped_timeout << " s" << (path_.followingRoute() ? " on the trail back" : "");
     return fail(why.str());
   }
   return TaskState::Running;

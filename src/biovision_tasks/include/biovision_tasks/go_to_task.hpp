@@ -71,7 +71,6 @@ private:
   PathFollower path_;
   double stuck_since_ = -1;  ///< time the base was first seen trapped/faulted/unlocalised, -1 = not
   double blocked_at_ = -1;   ///< time of the last PathFollower::blockAhead() of this stuck spell
-  bool retracing_ = false;   ///< return home on the trail driven (after a trapped_timeout)
   bool in_reach_ = false;
 };
 }  // namespace biovision_tasks

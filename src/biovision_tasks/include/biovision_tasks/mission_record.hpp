@@ -1,6 +1,5 @@
 #pragma once
 
-#include <cmath>
 #include <map>
 #include <string>
 #include <vector>
@@ -25,50 +24,12 @@ struct MissionRecord
   std::vector<cv::Point2d> trail;
   static constexpr double kTrailSpacing = 0.2;  ///< [m]: finer than the base's 0.52 m disc
   static constexpr size_t kMaxTrail = 4096;
+  static constexpr double kLoopCut = 0.35;  ///< [m]: wayBack's jumps; the base's discs at both ends overlap them
 
   /// Appends (x, y) once it is kTrailSpacing from the last point; a non-finite position is ignored.
-  void extendTrail(double x, double y)
-  {
-    if (!std::isfinite(x) || !std::isfinite(y))
-      return;
-    if (!trail.empty() && std::hypot(x - trail.back().x, y - trail.back().y) < kTrailSpacing)
-      return;
-    if (trail.size() >= kMaxTrail)
-    {
-      std::vector<cv::Point2d> thinned;
-      for (size_t i = 0; i < trail.size(); i += 2)
-        thinned.push_back(trail[i]);
-      trail.swap(thinned);
-    }
-    trail.emplace_back(x, y);
-  }
-
+  void extendTrail(double x, double y);
   /// The trail back to home from its point nearest `from`, loops cut (a point within kLoopCut of an older
   /// one jumps to it): ground crossed before, so free of what the map did not know. Empty with no trail.
-  std::vector<cv::Point2d> wayBack(const cv::Point2d& from) const
-  {
-    std::vector<cv::Point2d> route;
-    if (trail.empty())
-      return route;
-    size_t k = 0;
-    for (size_t i = 1; i < trail.size(); ++i)
-      if (std::hypot(trail[i].x - from.x, trail[i].y - from.y) < std::hypot(trail[k].x - from.x, trail[k].y - from.y))
-        k = i;
-    route.push_back(trail[k]);
-    while (k > 0)
-    {
-      size_t next = k - 1;
-      for (size_t j = 0; j + 1 < k; ++j)
-        if (std::hypot(trail[j].x - trail[k].x, trail[j].y - trail[k].y) < kLoopCut)
-        {
-          next = j;
-          break;
-        }
-      k = next;
-      route.push_back(trail[k]);
-    }
-    return route;
-  }
-  static constexpr double kLoopCut = 0.35;  ///< [m]: the base's discs at both ends overlap the jump
+  std::vector<cv::Point2d> wayBack(const cv::Point2d& from) const;
 };
 }  // namespace biovision_tasks

@@ -447,31 +447,11 @@ DisparityMap BioBinMatcher::aggregateAndTakeWinners(const CostVolume& costs, con
   auto t = Clock::now();
   const cv::Size size = costs.size();
   const int w = size.width, h = size.height, nd = costs.disparities();
-  const int stride = SemiGlobalAggregation::stride(nd);
   // 16-bit pixel-major costs: (M - min M) * kSgmCostScale, saturated at kMaxCost. A constant offset does
   // not change the aggregation's winners, the scale fixes what P1 and P2 mean.
-  float lowest = HUGE_VALF;
-  for (int k = 0; k < nd; ++k)
-  {
-    double v;
-    cv::minMaxLoc(costs.slice(k), &v, nullptr);
-    lowest = std::min(lowest, static_cast<float>(v));
-  }
+  const float lowest = costs.min();
   const float scale = static_cast<float>(BioBinParameters::kSgmCostScale);
-  sgm_costs_.resize(size_t(w) * h * stride);
-  cv::parallel_for_(cv::Range(0, h), [&](const cv::Range& rows) {
-    for (int y = rows.start; y < rows.end; ++y)
-    {
-      std::uint16_t* row = sgm_costs_.data() + size_t(y) * w * stride;
-      for (int k = 0; k < nd; ++k)
-      {
-        const float* c = costs.slice(k).ptr<float>(y);
-        for (int x = 0; x < w; ++x)
-          row[size_t(x) * stride + k] = static_cast<std::uint16_t>(
-              std::min((c[x] - lowest) * scale + 0.5f, float(SemiGlobalAggregation::kMaxCost)));
-      }
-    }
-  });
+  SemiGlobalAggregation::toPixelMajor(costs, lowest, scale, sgm_costs_);
   const auto units = [scale](double v) { return static_cast<int>(std::lround(v * scale)); };
   const SemiGlobalAggregation sgm(units(parameters_.sgm_p1),
                                   std::max(units(parameters_.sgm_p1), units(parameters_.sgm_p2)),
@@ -482,46 +462,9 @@ DisparityMap BioBinMatcher::aggregateAndTakeWinners(const CostVolume& costs, con
   times_.spatial += msSince(t);
   t = Clock::now();
   // Winner-take-all on S = forward + backward, as winnerTakeAll() does on the filtered costs.
-  cv::Mat left_d(size, CV_32F), right_k(size, CV_32S);
-  cv::parallel_for_(cv::Range(0, h), [&](const cv::Range& rows) {
-    std::vector<std::uint32_t> best_right(w);
-    std::vector<std::uint32_t> sum(stride);
-    for (int y = rows.start; y < rows.end; ++y)
-    {
-      std::fill(best_right.begin(), best_right.end(), ~0u);
-      int* rk = right_k.ptr<int>(y);
-      std::fill(rk, rk + w, -1);
-      float* ld = left_d.ptr<float>(y);
-      for (int x = 0; x < w; ++x)
-      {
-        const size_t index = (size_t(y) * w + x) * stride;
-        const std::uint16_t* f = sgm_forward_.data() + index;
-        const std::uint16_t* b = sgm_backward_.data() + index;
-        const int kmax = std::min(nd - 1, x);  // a disparity must stay inside the right image: k <= x
-        for (int k = 0; k <= kmax; ++k)
-          sum[k] = std::uint32_t(f[k]) + b[k];
-        int best = 0;
-        for (int k = 1; k <= kmax; ++k)
-          if (sum[k] < sum[best])
-            best = k;
-        for (int k = 0; k <= kmax; ++k)
-          if (sum[k] < best_right[x - k])
-          {
-            best_right[x - k] = sum[k];
-            rk[x - k] = k;
-          }
-        float d = static_cast<float>(best);
-        if (parameters_.subpixel && best > 0 && best < kmax)
-        {
-          const float cm = float(sum[best - 1]), c0 = float(sum[best]), cp = float(sum[best + 1]);
-          const float den = cm - 2 * c0 + cp;
-          if (den > 0)
-            d += std::clamp(0.5f * (cm - cp) / den, -0.5f, 0.5f);
-        }
-        ld[x] = d;
-      }
-    }
-  });
+  cv::Mat left_d, right_k;
+  SemiGlobalAggregation::winners(sgm_forward_, sgm_backward_, w, h, nd, parameters_.subpixel, left_d, right_k,
+                                 SemiGlobalAggregation::bestSimd());
   DisparityMap out = toInputResolution(left_d, right_k, input, sf);
   times_.wta += msSince(t);
   return out;

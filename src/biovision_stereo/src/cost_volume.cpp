@@ -5,6 +5,10 @@
 
 #include <opencv2/imgproc.hpp>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace biovision_stereo
 {
 CostVolume::CostVolume(cv::Size size, int disparities, float value) : size_(size)
@@ -22,16 +26,49 @@ void CostVolume::create(cv::Size size, int disparities)
     s.create(size, CV_32F);
 }
 
+namespace
+{
+// Least (lowest) or largest value of all slices, NaN ignored. cv::minMaxLoc tracks the location as well
+// and took 8% of BioBin's time (perf, Middlebury) for the two calls per frame.
+template <bool kLowest>
+float extreme(const std::vector<cv::Mat>& slices)
+{
+  float m = kLowest ? HUGE_VALF : -HUGE_VALF;
+  for (const cv::Mat& s : slices)
+    for (int y = 0; y < s.rows; ++y)
+    {
+      const float* p = s.ptr<float>(y);
+      int x = 0;
+#if defined(__SSE2__)
+      __m128 a = _mm_set1_ps(m), b = a;
+      for (; x + 8 <= s.cols; x += 8)
+      {
+        // (value, accumulator): a NaN value keeps the accumulator.
+        a = kLowest ? _mm_min_ps(_mm_loadu_ps(p + x), a) : _mm_max_ps(_mm_loadu_ps(p + x), a);
+        b = kLowest ? _mm_min_ps(_mm_loadu_ps(p + x + 4), b) : _mm_max_ps(_mm_loadu_ps(p + x + 4), b);
+      }
+      alignas(16) float lanes[8];
+      _mm_store_ps(lanes, a);
+      _mm_store_ps(lanes + 4, b);
+      for (const float v : lanes)
+        m = kLowest ? std::min(m, v) : std::max(m, v);
+#endif
+      for (; x < s.cols; ++x)
+        if (!std::isnan(p[x]))
+          m = kLowest ? std::min(m, p[x]) : std::max(m, p[x]);
+    }
+  return m;
+}
+}  // namespace
+
+float CostVolume::min() const
+{
+  return extreme<true>(slices_);
+}
+
 float CostVolume::max() const
 {
-  double m = -HUGE_VAL;
-  for (const cv::Mat& s : slices_)
-  {
-    double v;
-    cv::minMaxLoc(s, nullptr, &v);
-    m = std::max(m, v);
-  }
-  return static_cast<float>(m);
+  return extreme<false>(slices_);
 }
 
 CostVolume CostVolume::resampled(cv::Size size, int disparities) const

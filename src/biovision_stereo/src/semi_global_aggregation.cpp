@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
 
 #include <opencv2/core/utility.hpp>
 
@@ -156,6 +157,132 @@ __attribute__((flatten)) void sweepGeneric(const std::vector<std::uint16_t>& cos
 {
   sweep<false>(costs, w, h, nd, barriers, p1, p2, p2_barrier, paths, backward, sums);
 }
+
+/// S = forward + backward and its winners on image row y (see winners()). Written for the compiler to
+/// vectorise (min reductions, a branch-free masked update); compiled twice, generic and AVX2.
+struct WinnerRows
+{
+  const std::uint16_t* forward;
+  const std::uint16_t* backward;
+  int width, disparities, stride;
+  bool subpixel;
+  cv::Mat* left;
+  cv::Mat* right_k;
+};
+
+inline void winnerRows(const WinnerRows& in, int y0, int y1)
+{
+  const int w = in.width, nd = in.disparities, stride = in.stride;
+  std::vector<std::uint16_t> sum(stride), best_right(w);
+  std::vector<std::int16_t> k_right(w);  // disparities < stride <= 2^15 (16-bit volumes)
+  for (int y = y0; y < y1; ++y)
+  {
+    std::fill(best_right.begin(), best_right.end(), kBlocked);
+    std::fill(k_right.begin(), k_right.end(), std::int16_t(-1));
+    float* ld = in.left->ptr<float>(y);
+    for (int x = 0; x < w; ++x)
+    {
+      const size_t index = (size_t(y) * w + x) * stride;
+      const std::uint16_t* f = in.forward + index;
+      const std::uint16_t* b = in.backward + index;
+      const int kmax = std::min(nd - 1, x);  // a disparity must stay inside the right image: k <= x
+      std::uint16_t least = kBlocked;
+      for (int k = 0; k <= kmax; ++k)
+      {
+        // Each of forward, backward <= 4 (kMaxCost + P2) <= 16376: the sum fits 16 bits.
+        const auto s = static_cast<std::uint16_t>(f[k] + b[k]);
+        sum[k] = s;
+        least = std::min(least, s);
+      }
+      int best = 0;
+      while (sum[best] != least)
+        ++best;
+      // Right image pixel x - k sees left pixel x at disparity k; i runs over those pixels left to right.
+      std::uint16_t* br = best_right.data() + (x - kmax);
+      std::int16_t* kr = k_right.data() + (x - kmax);
+      for (int i = 0; i <= kmax; ++i)
+      {
+        const std::uint16_t s = sum[kmax - i];
+        const bool better = s < br[i];
+        br[i] = better ? s : br[i];
+        kr[i] = better ? static_cast<std::int16_t>(kmax - i) : kr[i];
+      }
+      float d = static_cast<float>(best);
+      if (in.subpixel && best > 0 && best < kmax)
+      {
+        const float cm = float(sum[best - 1]), c0 = float(sum[best]), cp = float(sum[best + 1]);
+        const float den = cm - 2 * c0 + cp;
+        if (den > 0)
+          d += std::clamp(0.5f * (cm - cp) / den, -0.5f, 0.5f);
+      }
+      ld[x] = d;
+    }
+    std::copy(k_right.begin(), k_right.end(), in.right_k->ptr<int>(y));
+  }
+}
+
+__attribute__((flatten)) void winnerRowsGeneric(const WinnerRows& in, int y0, int y1)
+{
+  winnerRows(in, y0, y1);
+}
+
+__attribute__((target("avx2"), flatten)) void winnerRowsAvx2(const WinnerRows& in, int y0, int y1)
+{
+  winnerRows(in, y0, y1);
+}
+
+/// One image row of toPixelMajor(): c[k] points at row y of slice k.
+void pixelMajorRow(const float* const* c, int w, int nd, int stride, float lowest, float scale, std::uint16_t* row)
+{
+  const float top = SemiGlobalAggregation::kMaxCost;
+  const auto convert = [&](float v) { return static_cast<std::uint16_t>(std::min((v - lowest) * scale + 0.5f, top)); };
+  int k0 = 0;
+#if defined(__SSE2__)
+  // 8 disparities x 8 pixels at a time: convert along x, then an 8x8 16-bit transpose to pixel-major.
+  // The same float operations as convert() (min_ps differs only on NaN, which costs never are).
+  const __m128 vlow = _mm_set1_ps(lowest), vscale = _mm_set1_ps(scale), vhalf = _mm_set1_ps(0.5f),
+               vtop = _mm_set1_ps(top);
+  const auto convert4 = [&](const float* p) {
+    return _mm_cvttps_epi32(_mm_min_ps(_mm_add_ps(_mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(p), vlow), vscale), vhalf), vtop));
+  };
+  for (; k0 + 8 <= nd; k0 += 8)
+  {
+    int x = 0;
+    for (; x + 8 <= w; x += 8)
+    {
+      __m128i v[8];  // v[i]: pixels x..x+7 at disparity k0 + i (values <= kMaxCost: signed packing is exact)
+      for (int i = 0; i < 8; ++i)
+        v[i] = _mm_packs_epi32(convert4(c[k0 + i] + x), convert4(c[k0 + i] + x + 4));
+      __m128i t[8], u[8];
+      for (int i = 0; i < 4; ++i)
+      {
+        t[2 * i] = _mm_unpacklo_epi16(v[2 * i], v[2 * i + 1]);
+        t[2 * i + 1] = _mm_unpackhi_epi16(v[2 * i], v[2 * i + 1]);
+      }
+      for (int i = 0; i < 2; ++i)
+      {
+        u[4 * i] = _mm_unpacklo_epi32(t[4 * i], t[4 * i + 2]);
+        u[4 * i + 1] = _mm_unpackhi_epi32(t[4 * i], t[4 * i + 2]);
+        u[4 * i + 2] = _mm_unpacklo_epi32(t[4 * i + 1], t[4 * i + 3]);
+        u[4 * i + 3] = _mm_unpackhi_epi32(t[4 * i + 1], t[4 * i + 3]);
+      }
+      for (int i = 0; i < 4; ++i)
+      {
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(row + size_t(x + 2 * i) * stride + k0),
+                         _mm_unpacklo_epi64(u[i], u[4 + i]));
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(row + size_t(x + 2 * i + 1) * stride + k0),
+                         _mm_unpackhi_epi64(u[i], u[4 + i]));
+      }
+    }
+    for (; x < w; ++x)
+      for (int k = k0; k < k0 + 8; ++k)
+        row[size_t(x) * stride + k] = convert(c[k][x]);
+  }
+#endif
+  for (int k = k0; k < nd; ++k)
+    for (int x = 0; x < w; ++x)
+      row[size_t(x) * stride + k] = convert(c[k][x]);
+}
 }  // namespace
 
 SemiGlobalAggregation::SemiGlobalAggregation(int p1, int p2, int p2_barrier, int paths)
@@ -198,6 +325,43 @@ void SemiGlobalAggregation::aggregate(const std::vector<std::uint16_t>& costs, i
       else
         sweepGeneric(costs, width, height, disparities, barriers, p1_, p2_, p2_barrier_, paths_, b == 1, sums);
     }
+  });
+}
+
+void SemiGlobalAggregation::toPixelMajor(const CostVolume& costs, float lowest, float scale,
+                                         std::vector<std::uint16_t>& out)
+{
+  const int w = costs.size().width, h = costs.size().height, nd = costs.disparities(), stride_ = stride(nd);
+  out.resize(size_t(w) * h * stride_);
+  cv::parallel_for_(cv::Range(0, h), [&](const cv::Range& rows) {
+    std::vector<const float*> c(nd);
+    for (int y = rows.start; y < rows.end; ++y)
+    {
+      for (int k = 0; k < nd; ++k)
+        c[k] = costs.slice(k).ptr<float>(y);
+      pixelMajorRow(c.data(), w, nd, stride_, lowest, scale, out.data() + size_t(y) * w * stride_);
+    }
+  });
+}
+
+void SemiGlobalAggregation::winners(const std::vector<std::uint16_t>& forward,
+                                    const std::vector<std::uint16_t>& backward, int width, int height,
+                                    int disparities, bool subpixel, cv::Mat& left, cv::Mat& right_k, Simd simd)
+{
+  const size_t n = size_t(width) * height * stride(disparities);
+  if (width < 1 || height < 1 || disparities < 1 || forward.size() != n || backward.size() != n)
+    throw std::invalid_argument("SemiGlobalAggregation::winners: sums do not match " + std::to_string(width) + "x" +
+                                std::to_string(height) + "x" + std::to_string(disparities));
+  if (simd == Simd::kAvx2 && !biovision_common::CpuFeatures::host().avx2)
+    throw std::invalid_argument("SemiGlobalAggregation::winners: this CPU has no AVX2");
+  left.create(height, width, CV_32F);
+  right_k.create(height, width, CV_32S);
+  const WinnerRows in{forward.data(), backward.data(), width, disparities, stride(disparities), subpixel, &left, &right_k};
+  cv::parallel_for_(cv::Range(0, height), [&](const cv::Range& rows) {
+    if (simd == Simd::kAvx2)
+      winnerRowsAvx2(in, rows.start, rows.end);
+    else
+      winnerRowsGeneric(in, rows.start, rows.end);
   });
 }
 }  // namespace biovision_stereo

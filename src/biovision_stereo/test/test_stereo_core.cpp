@@ -1,5 +1,6 @@
 // Unit tests of the ROS-free BioBin core.
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -124,11 +125,22 @@ void occludedScene(int width, int height, cv::Mat& left, cv::Mat& right)
 
 TEST(PixelDescriptor, RollingEqualsFromScratchEverywhere)
 {
-  const auto odd = randomResponses(cv::Size(37, 9), 5);
-  const PixelDescriptorImage codes = PixelDescriptorImage::compute(odd);
-  for (int y = 0; y < 9; ++y)
-    for (int x = 0; x < 37; ++x)
-      ASSERT_TRUE(codes.at(x, y) == PixelDescriptorImage::fromScratch(odd, x, y)) << "at " << x << "," << y;
+  // Widths below, at and beyond the 16 comparisons of a segment, one-row images, and ties (rounded
+  // responses: R(x) == R(x+1) is a 0 bit).
+  for (const cv::Size size : {cv::Size(37, 9), cv::Size(1, 1), cv::Size(2, 3), cv::Size(16, 1), cv::Size(17, 2),
+                              cv::Size(100, 4)})
+    for (const bool ties : {false, true})
+    {
+      auto odd = randomResponses(size, 5 + size.width);
+      if (ties)
+        for (cv::Mat& m : odd)
+          m.forEach<float>([](float& v, const int*) { v = std::round(v); });
+      const PixelDescriptorImage codes = PixelDescriptorImage::compute(odd);
+      for (int y = 0; y < size.height; ++y)
+        for (int x = 0; x < size.width; ++x)
+          ASSERT_TRUE(codes.at(x, y) == PixelDescriptorImage::fromScratch(odd, x, y))
+              << "at " << x << "," << y << " of " << size << (ties ? " with ties" : "");
+    }
 }
 
 TEST(PixelDescriptor, BitsFollowTheSamplingPattern)
@@ -215,6 +227,138 @@ TEST(DisparityDog, RecursiveBroadGaussianMatchesTheExactFir)
   narrow.applyInPlace(narrow_in_place);
   for (int k = 0; k < 60; ++k)
     EXPECT_EQ(cv::norm(reference.slice(k), narrow_in_place.slice(k), cv::NORM_INF), 0.0) << "slice " << k;
+}
+
+TEST(CostVolume, MinimumAndMaximumOverEverySliceIgnoreNaN)
+{
+  for (const cv::Size size : {cv::Size(1, 1), cv::Size(7, 3), cv::Size(8, 2), cv::Size(19, 5)})
+  {
+    CostVolume costs(size, 5);
+    cv::RNG rng(size.width);
+    for (int k = 0; k < 5; ++k)
+      rng.fill(costs.slice(k), cv::RNG::UNIFORM, 0.0, 1.0);
+    // The extremes at the last pixel of a row (the vector loops' tail or last lane) of a middle slice.
+    costs.slice(2).at<float>(size.height - 1, size.width - 1) = -4.f;
+    costs.slice(3).at<float>(0, size.width - 1) = 9.f;
+    costs.slice(1).at<float>(0, 0) = std::numeric_limits<float>::quiet_NaN();
+    if (size.area() > 1)
+    {
+      EXPECT_EQ(costs.min(), -4.f) << size;
+      EXPECT_EQ(costs.max(), 9.f) << size;
+    }
+  }
+  EXPECT_EQ(CostVolume().min(), HUGE_VALF);
+  EXPECT_EQ(CostVolume().max(), -HUGE_VALF);
+}
+
+TEST(SemiGlobalAggregation, PixelMajorCostsEqualTheScalarConversion)
+{
+  // Widths and disparity counts around the 8x8 transpose's blocks; costs from the minimum to beyond
+  // saturation.
+  for (const cv::Size size : {cv::Size(1, 1), cv::Size(7, 2), cv::Size(8, 3), cv::Size(21, 5)})
+    for (int nd : {1, 7, 8, 9, 17, 40})
+    {
+      CostVolume costs(size, nd);
+      cv::RNG rng(nd * 100 + size.width);
+      for (int k = 0; k < nd; ++k)
+        rng.fill(costs.slice(k), cv::RNG::UNIFORM, -3.0, 300.0);
+      float lowest = HUGE_VALF;
+      for (int k = 0; k < nd; ++k)
+        for (int y = 0; y < size.height; ++y)
+          for (int x = 0; x < size.width; ++x)
+            lowest = std::min(lowest, costs.at(x, y, k));
+      const float scale = 8.f;
+      std::vector<std::uint16_t> out;
+      SemiGlobalAggregation::toPixelMajor(costs, lowest, scale, out);
+      const int stride = SemiGlobalAggregation::stride(nd);
+      ASSERT_EQ(out.size(), size_t(size.area()) * stride);
+      int wrong = 0, saturated = 0;
+      for (int y = 0; y < size.height; ++y)
+        for (int x = 0; x < size.width; ++x)
+          for (int k = 0; k < nd; ++k)
+          {
+            const auto expected = static_cast<std::uint16_t>(std::min(
+                (costs.at(x, y, k) - lowest) * scale + 0.5f, float(SemiGlobalAggregation::kMaxCost)));
+            wrong += out[(size_t(y) * size.width + x) * stride + k] != expected;
+            saturated += expected == SemiGlobalAggregation::kMaxCost;
+          }
+      EXPECT_EQ(wrong, 0) << size << " nd " << nd;
+      if (size.area() * nd > 100)
+      {
+        EXPECT_GT(saturated, 0) << "the test should reach saturation";
+      }
+    }
+}
+
+TEST(SemiGlobalAggregation, WinnersEqualTheScalarWinnerTakeAll)
+{
+  std::vector<SemiGlobalAggregation::Simd> simds{SemiGlobalAggregation::Simd::kGeneric};
+  if (SemiGlobalAggregation::bestSimd() == SemiGlobalAggregation::Simd::kAvx2)
+    simds.push_back(SemiGlobalAggregation::Simd::kAvx2);
+  std::mt19937 rng(11);
+  for (int nd : {1, 2, 15, 16, 33})
+    for (int w : {1, 5, 40})
+    {
+      const int h = 3, stride = SemiGlobalAggregation::stride(nd);
+      // Sums up to each half's bound 4 (kMaxCost + P2); a narrow range in half the cases, for ties.
+      const int top = nd % 2 ? 4 * 2 * SemiGlobalAggregation::kMaxCost : 6;
+      std::uniform_int_distribution<int> value(0, top);
+      std::vector<std::uint16_t> forward(size_t(w) * h * stride), backward(forward.size());
+      for (size_t i = 0; i < forward.size(); ++i)
+      {
+        forward[i] = static_cast<std::uint16_t>(value(rng));
+        backward[i] = static_cast<std::uint16_t>(value(rng));
+      }
+      for (const bool subpixel : {false, true})
+        for (const auto simd : simds)
+        {
+          cv::Mat left, right_k;
+          SemiGlobalAggregation::winners(forward, backward, w, h, nd, subpixel, left, right_k, simd);
+          ASSERT_EQ(left.size(), cv::Size(w, h));
+          int wrong = 0;
+          for (int y = 0; y < h; ++y)
+          {
+            // The reference: 32-bit sums, the first least one, right pixels by a strict <.
+            std::vector<std::uint32_t> best_right(w, ~0u);
+            std::vector<int> k_right(w, -1);
+            for (int x = 0; x < w; ++x)
+            {
+              const size_t index = (size_t(y) * w + x) * stride;
+              const int kmax = std::min(nd - 1, x);
+              std::vector<std::uint32_t> sum(kmax + 1);
+              for (int k = 0; k <= kmax; ++k)
+                sum[k] = std::uint32_t(forward[index + k]) + backward[index + k];
+              int best = 0;
+              for (int k = 1; k <= kmax; ++k)
+                if (sum[k] < sum[best])
+                  best = k;
+              for (int k = 0; k <= kmax; ++k)
+                if (sum[k] < best_right[x - k])
+                {
+                  best_right[x - k] = sum[k];
+                  k_right[x - k] = k;
+                }
+              float d = float(best);
+              if (subpixel && best > 0 && best < kmax)
+              {
+                const float cm = float(sum[best - 1]), c0 = float(sum[best]), cp = float(sum[best + 1]);
+                const float den = cm - 2 * c0 + cp;
+                if (den > 0)
+                  d += std::clamp(0.5f * (cm - cp) / den, -0.5f, 0.5f);
+              }
+              wrong += left.at<float>(y, x) != d;
+            }
+            for (int x = 0; x < w; ++x)
+              wrong += right_k.at<int>(y, x) != k_right[x];
+          }
+          EXPECT_EQ(wrong, 0) << SemiGlobalAggregation::name(simd) << " nd " << nd << " w " << w
+                              << (subpixel ? " subpixel" : "");
+        }
+    }
+  cv::Mat left, right_k;
+  EXPECT_THROW(SemiGlobalAggregation::winners(std::vector<std::uint16_t>(10), std::vector<std::uint16_t>(10), 3, 3, 4,
+                                              false, left, right_k, SemiGlobalAggregation::Simd::kGeneric),
+               std::invalid_argument);  // sums do not match the sizes
 }
 
 TEST(SemiGlobalAggregation, EveryPathEqualsTheBruteForceReference)

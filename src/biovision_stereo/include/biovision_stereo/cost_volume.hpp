@@ -25,7 +25,9 @@ public:
   const cv::Mat& slice(int k) const { return slices_[k]; }
   float at(int x, int y, int k) const { return slices_[k].at<float>(y, x); }
 
-  /// Largest value over the whole volume.
+  /// Least value over the whole volume, NaN ignored (+inf when empty or all NaN).
+  float min() const;
+  /// Largest value over the whole volume, NaN ignored (-inf when empty or all NaN).
   float max() const;
   /// This volume resampled to `size` x `disparities` (bilinear in x, y; linear in k): the
   /// coarse-to-fine upsampling of the thesis (m and k multiplied by sf).

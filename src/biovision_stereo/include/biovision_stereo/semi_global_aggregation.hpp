@@ -6,6 +6,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "biovision_stereo/cost_volume.hpp"
+
 namespace biovision_stereo
 {
 /// Semi-global path aggregation (Hirschmueller 2008, the step of OpenCV's SGBM) over a BioBin cost
@@ -48,6 +50,20 @@ public:
                  const cv::Mat& barriers, std::vector<std::uint16_t>& forward, std::vector<std::uint16_t>& backward,
                  Simd simd) const;
 
+  /// The pixel-major input of aggregate() from a BioBin volume: (M(x, y, d) - lowest) * scale + 0.5,
+  /// truncated, saturated at kMaxCost, for every pixel and d < disparities (lanes above are left as they
+  /// were); `out` is resized to width * height * stride. lowest: at most every cost (the volume's
+  /// minimum), scale > 0 [cost units per volume unit]. Rows in parallel; 8x8 SSE2 transposes on x86-64.
+  static void toPixelMajor(const CostVolume& costs, float lowest, float scale, std::vector<std::uint16_t>& out);
+  /// Winner-take-all on S = forward + backward (aggregate()'s sums). left: CV_32F width x height, at each
+  /// pixel the d <= min(disparities - 1, x) of least S (the smallest such d on ties), moved by the parabola
+  /// through S(d-1), S(d), S(d+1) (at most +-0.5 px) when `subpixel` and d is not at either end.
+  /// right_k: CV_32S width x height, at right pixel xr the disparity d of least S over the left pixels
+  /// xr + d that see it (the smallest d on ties), -1 where none does. Throws std::invalid_argument when the
+  /// sums do not match the sizes or kAvx2 is asked for on a CPU without it.
+  static void winners(const std::vector<std::uint16_t>& forward, const std::vector<std::uint16_t>& backward,
+                      int width, int height, int disparities, bool subpixel, cv::Mat& left, cv::Mat& right_k,
+                      Simd simd);
   int p1() const { return p1_; }
   int p2() const { return p2_; }
   int p2Barrier() const { return p2_barrier_; }

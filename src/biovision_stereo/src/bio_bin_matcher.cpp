@@ -192,7 +192,7 @@ cv::Size BioBinMatcher::levelSize(cv::Size input, size_t level) const
 
 std::vector<cv::Mat> BioBinMatcher::oddResponses(size_t level, const cv::Mat& gray)
 {
-  return odd_banks_[level]->computeOdd(gray)[0];
+  return odd_banks_[level]->computeOddPairs(gray)[0];
 }
 
 CostVolume BioBinMatcher::levelCosts(size_t level, const cv::Mat& left, const cv::Mat& right, int disparities,

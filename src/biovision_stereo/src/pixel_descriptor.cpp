@@ -15,11 +15,11 @@ constexpr int kOrientations = 8;
 
 #if !defined(__SSE2__)
 // Comparison bits of one response row: bits[x] = R(x) > R(x + 1), replicated border.
-void comparisonRow(const float* r, int width, std::vector<std::uint8_t>& bits)
+void comparisonRow(const float* r, int step, int width, std::vector<std::uint8_t>& bits)
 {
   bits.resize(width);
   for (int x = 0; x + 1 < width; ++x)
-    bits[x] = r[x] > r[x + 1];
+    bits[x] = r[x * step] > r[(x + 1) * step];
   bits[width - 1] = 0;  // R(w-1) > R(w-1) is false
 }
 
@@ -32,11 +32,26 @@ inline std::uint8_t bitAt(const std::vector<std::uint8_t>& bits, int x)
 
 void checkInput(const std::vector<cv::Mat>& odd)
 {
-  if (odd.size() != kOrientations)
-    throw std::invalid_argument("PixelDescriptor: needs 8 orientation maps");
+  const bool singles = odd.size() == kOrientations, pairs = odd.size() == kOrientations / 2;
+  if (!singles && !pairs)
+    throw std::invalid_argument("PixelDescriptor: needs 8 orientation maps or 4 orientation pairs");
   for (const cv::Mat& m : odd)
-    if (m.type() != CV_32FC1 || m.size() != odd.front().size() || m.empty())
-      throw std::invalid_argument("PixelDescriptor: orientation maps must be CV_32FC1 of one size");
+    if (m.type() != (singles ? CV_32FC1 : CV_32FC2) || m.size() != odd.front().size() || m.empty())
+      throw std::invalid_argument("PixelDescriptor: orientation maps must be CV_32FC1 (pairs CV_32FC2) of one size");
+}
+
+// Row y of orientation o's responses: element x at r[x * step].
+struct ResponseRow
+{
+  const float* r;
+  int step;
+};
+
+ResponseRow responseRow(const std::vector<cv::Mat>& odd, int o, int y)
+{
+  if (odd.size() == kOrientations)
+    return {odd[o].ptr<float>(y), 1};
+  return {odd[o / 2].ptr<float>(y) + o % 2, 2};
 }
 }  // namespace
 
@@ -56,10 +71,10 @@ PixelDescriptorImage PixelDescriptorImage::compute(const std::vector<cv::Mat>& o
   for (int o = 0; o < kOrientations; ++o)
     for (int y = 0; y < h; ++y)
     {
-      const float* r = odd[o].ptr<float>(y);
+      const ResponseRow in = responseRow(odd, o, y);
       std::uint8_t* out = reversedRow(o, y) + 8;
       for (int x = 0; x + 1 < w; ++x)
-        out[w - 1 - x] = r[x] > r[x + 1] ? 0xFF : 0;  // out[0] (x = w-1) stays 0: R(w-1) > R(w-1) is false
+        out[w - 1 - x] = in.r[x * in.step] > in.r[(x + 1) * in.step] ? 0xFF : 0;  // out[0] (x = w-1) stays 0: R(w-1) > R(w-1) is false
     }
   for (int y = 0; y < h; ++y)
   {
@@ -91,7 +106,10 @@ PixelDescriptorImage PixelDescriptorImage::compute(const std::vector<cv::Mat>& o
   {
     const int word = o / 2, shift = 32 * (o % 2);
     for (int y = 0; y < h; ++y)
-      comparisonRow(odd[o].ptr<float>(y), w, bits[y]);
+    {
+      const ResponseRow in = responseRow(odd, o, y);
+      comparisonRow(in.r, in.step, w, bits[y]);
+    }
     for (int y = 0; y < h; ++y)
     {
       const std::vector<std::uint8_t>& above = bits[std::max(y - 1, 0)];
@@ -128,7 +146,8 @@ PixelDescriptor PixelDescriptorImage::fromScratch(const std::vector<cv::Mat>& od
   checkInput(odd);
   const int w = odd.front().cols, h = odd.front().rows;
   auto response = [&](int o, int xx, int yy) {
-    return odd[o].at<float>(std::clamp(yy, 0, h - 1), std::clamp(xx, 0, w - 1));
+    const ResponseRow in = responseRow(odd, o, std::clamp(yy, 0, h - 1));
+    return in.r[std::clamp(xx, 0, w - 1) * in.step];
   };
   auto bit = [&](int o, int xx, int yy) -> std::uint64_t { return response(o, xx, yy) > response(o, xx + 1, yy); };
   PixelDescriptor d;

@@ -136,10 +136,24 @@ TEST(PixelDescriptor, RollingEqualsFromScratchEverywhere)
         for (cv::Mat& m : odd)
           m.forEach<float>([](float& v, const int*) { v = std::round(v); });
       const PixelDescriptorImage codes = PixelDescriptorImage::compute(odd);
+      // The same responses as orientation pairs (SimpleCellBank::computeOddPairs), through a view.
+      std::vector<cv::Mat> pairs(4);
+      for (int i = 0; i < 4; ++i)
+      {
+        cv::Mat padded;
+        cv::merge(std::vector<cv::Mat>{odd[2 * i], odd[2 * i + 1]}, padded);
+        cv::copyMakeBorder(padded, padded, 1, 1, 2, 3, cv::BORDER_CONSTANT, cv::Scalar::all(1e9));
+        pairs[i] = padded(cv::Rect(2, 1, size.width, size.height));
+      }
+      const PixelDescriptorImage from_pairs = PixelDescriptorImage::compute(pairs);
       for (int y = 0; y < size.height; ++y)
         for (int x = 0; x < size.width; ++x)
+        {
           ASSERT_TRUE(codes.at(x, y) == PixelDescriptorImage::fromScratch(odd, x, y))
               << "at " << x << "," << y << " of " << size << (ties ? " with ties" : "");
+          ASSERT_TRUE(from_pairs.at(x, y) == codes.at(x, y))
+              << "pairs at " << x << "," << y << " of " << size << (ties ? " with ties" : "");
+        }
     }
 }
 

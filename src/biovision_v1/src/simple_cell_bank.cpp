@@ -203,7 +203,7 @@ std::vector<cv::Mat> SimpleCellBank::imageSpectra(const cv::Mat& gray) const
   return image_spectra;
 }
 
-std::vector<std::vector<cv::Mat>> SimpleCellBank::computeOdd(const cv::Mat& gray)
+std::vector<std::vector<cv::Mat>> SimpleCellBank::computeOddPairs(const cv::Mat& gray)
 {
   CV_Assert(gray.type() == CV_32FC1 && !gray.empty());
   plan(gray.size(), true);
@@ -212,25 +212,36 @@ std::vector<std::vector<cv::Mat>> SimpleCellBank::computeOdd(const cv::Mat& gray
       throw std::invalid_argument("SimpleCellBank::computeOdd needs min_grid_wavelength 0 (decimation 1)");
   const std::vector<cv::Mat> image_spectra = imageSpectra(gray);
   const int n_scales = static_cast<int>(current().size());
-  const int n_orient = parameters_.orientations;
-  const int n_pairs = (n_orient + 1) / 2;
-  std::vector<std::vector<cv::Mat>> out(n_scales, std::vector<cv::Mat>(n_orient));
+  const int n_pairs = (parameters_.orientations + 1) / 2;
+  std::vector<std::vector<cv::Mat>> out(n_scales, std::vector<cv::Mat>(n_pairs));
   cv::parallel_for_(cv::Range(0, n_scales * n_pairs), [&](const cv::Range& range) {
-    cv::Mat product;
     for (int job = range.start; job < range.end; ++job)
     {
       const int s = job / n_pairs, pair = job % n_pairs;
       const ScalePlan& p = current()[s];
+      cv::Mat product;  // one per job: the returned view keeps it
       cv::mulSpectrums(image_spectra[p.spectrum_source], p.odd_pair_spectra[pair], product, 0);
       FourierTransform::inverseUnscaled(product, product);  // the pair spectra carry the 1/N
-      const cv::Mat valid = product(cv::Rect(p.padding, p.padding, gray.cols, gray.rows));
-      cv::Mat parts[2];
-      cv::split(valid, parts);
-      out[s][2 * pair] = parts[0];
-      if (2 * pair + 1 < n_orient)
-        out[s][2 * pair + 1] = parts[1];
+      out[s][pair] = product(cv::Rect(p.padding, p.padding, gray.cols, gray.rows));
     }
   });
+  return out;
+}
+
+std::vector<std::vector<cv::Mat>> SimpleCellBank::computeOdd(const cv::Mat& gray)
+{
+  const std::vector<std::vector<cv::Mat>> pairs = computeOddPairs(gray);
+  const int n_orient = parameters_.orientations;
+  std::vector<std::vector<cv::Mat>> out(pairs.size(), std::vector<cv::Mat>(n_orient));
+  for (size_t s = 0; s < pairs.size(); ++s)
+    for (size_t pair = 0; pair < pairs[s].size(); ++pair)
+    {
+      cv::Mat parts[2];
+      cv::split(pairs[s][pair], parts);
+      out[s][2 * pair] = parts[0];
+      if (int(2 * pair + 1) < n_orient)
+        out[s][2 * pair + 1] = parts[1];
+    }
   return out;
 }
 

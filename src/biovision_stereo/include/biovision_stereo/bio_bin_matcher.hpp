@@ -64,8 +64,8 @@ public:
   CostVolume levelCosts(size_t level, const cv::Mat& left, const cv::Mat& right, int disparities, cv::Mat* barriers);
 
 private:
-  /// The odd simple cells of one level (8 orientations, full resolution, wavelength base_wavelength):
-  /// the one place BioBin computes V1 responses for its descriptors. gray: CV_32F in [0, 1].
+  /// The odd simple cells of one level (8 orientations as 4 CV_32FC2 pairs, full resolution, wavelength
+  /// base_wavelength): the one place BioBin computes V1 responses for its descriptors. gray: CV_32F in [0, 1].
   std::vector<cv::Mat> oddResponses(size_t level, const cv::Mat& gray);
   void fuseWithCoarser(CostVolume& costs, const CostVolume& coarser) const;
   void spatialFilter(CostVolume& costs, const cv::Mat& barriers) const;

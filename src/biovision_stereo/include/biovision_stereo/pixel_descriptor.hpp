@@ -29,9 +29,11 @@ public:
   PixelDescriptorImage(int width, int height) : width_(width), height_(height), data_(size_t(width) * height) {}
 
   /// Rolling computation: each pixel's code is the previous one shifted by one with one new
-  /// comparison appended per segment (thesis §4.4.3). odd: 8 CV_32F maps of equal size.
+  /// comparison appended per segment (thesis §4.4.3). odd: 8 CV_32FC1 maps of equal size, or 4 CV_32FC2
+  /// maps with orientations 2i and 2i+1 in channels 0 and 1 (SimpleCellBank::computeOddPairs, no split);
+  /// throws std::invalid_argument otherwise.
   static PixelDescriptorImage compute(const std::vector<cv::Mat>& odd);
-  /// The same descriptor computed from scratch at one pixel (the reference for tests).
+  /// The same descriptor computed from scratch at one pixel (the reference for tests); odd as compute().
   static PixelDescriptor fromScratch(const std::vector<cv::Mat>& odd, int x, int y);
 
   int width() const { return width_; }

@@ -41,6 +41,11 @@ public:
   /// four samples per wavelength, not two. Returns per scale one CV_32F map per orientation.
   std::vector<std::vector<cv::Mat>> computeOdd(const cv::Mat& gray);
 
+  /// computeOdd() without its final split: per scale one CV_32FC2 map per orientation pair, R^O of
+  /// orientation 2i in channel 0 and of 2i+1 in channel 1 (an odd count's last pair has 0 in channel 1).
+  /// The maps are views into the padded inverse DFTs (not continuous): one pass over the data fewer.
+  std::vector<std::vector<cv::Mat>> computeOddPairs(const cv::Mat& gray);
+
   const GaborParameters& parameters() const { return parameters_; }
 
   /// Kernel spectra sets kept (one per distinct set of DFT sizes), least recently used dropped first.

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include <opencv2/core/utility.hpp>
+
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -64,44 +66,50 @@ PixelDescriptorImage PixelDescriptorImage::compute(const std::vector<cv::Mat>& o
   // Comparison bytes (0 or 0xFF) of every row and orientation, stored right to left with 8 zero bytes
   // of margin each side: then the 16 comparisons x-8..x+7 of pixel x are the 16 bytes from w - x, and one
   // movemask packs them with x-8 in bit 15, as the descriptor orders them (8-bit segments likewise). The
-  // zero margin is bitAt()'s false outside the image. 4x faster than shifting in one bit at a time.
+  // zero margin is bitAt()'s false outside the image. A third less time than shifting in one bit at a
+  // time (perf on Middlebury); rows in parallel.
   const int row_bytes = w + 16;
   std::vector<std::uint8_t> reversed(size_t(kOrientations) * h * row_bytes, 0);
   const auto reversedRow = [&](int o, int y) { return reversed.data() + (size_t(o) * h + y) * row_bytes; };
-  for (int o = 0; o < kOrientations; ++o)
-    for (int y = 0; y < h; ++y)
+  cv::parallel_for_(cv::Range(0, kOrientations * h), [&](const cv::Range& jobs) {
+    for (int job = jobs.start; job < jobs.end; ++job)
     {
+      const int o = job / h, y = job % h;
       const ResponseRow in = responseRow(odd, o, y);
       std::uint8_t* out = reversedRow(o, y) + 8;
+      // out[0] (x = w-1) stays 0: R(w-1) > R(w-1) is false.
       for (int x = 0; x + 1 < w; ++x)
-        out[w - 1 - x] = in.r[x * in.step] > in.r[(x + 1) * in.step] ? 0xFF : 0;  // out[0] (x = w-1) stays 0: R(w-1) > R(w-1) is false
+        out[w - 1 - x] = in.r[x * in.step] > in.r[(x + 1) * in.step] ? 0xFF : 0;
     }
-  for (int y = 0; y < h; ++y)
-  {
-    const int above = std::max(y - 1, 0), below = std::min(y + 1, h - 1);
-    PixelDescriptor* row = &image.at(0, y);
-    for (int x = 0; x < w; ++x)
+  });
+  cv::parallel_for_(cv::Range(0, h), [&](const cv::Range& rows) {
+    for (int y = rows.start; y < rows.end; ++y)
     {
-      std::uint64_t words[4] = {0, 0, 0, 0};
-      for (int o = 0; o < kOrientations; ++o)
+      const int above = std::max(y - 1, 0), below = std::min(y + 1, h - 1);
+      PixelDescriptor* row = &image.at(0, y);
+      for (int x = 0; x < w; ++x)
       {
-        const auto load16 = [&](int yy) {
-          return static_cast<std::uint32_t>(_mm_movemask_epi8(
-              _mm_loadu_si128(reinterpret_cast<const __m128i*>(reversedRow(o, yy) + w - x))));
-        };
-        const auto load8 = [&](int yy) {
-          return static_cast<std::uint32_t>(_mm_movemask_epi8(
-                     _mm_loadl_epi64(reinterpret_cast<const __m128i*>(reversedRow(o, yy) + w - x + 4)))) &
-                 0xFFu;
-        };
-        const std::uint64_t code = (std::uint64_t(load16(y)) << 16) | (load8(above) << 8) | load8(below);
-        words[o / 2] |= code << (32 * (o % 2));
+        std::uint64_t words[4] = {0, 0, 0, 0};
+        for (int o = 0; o < kOrientations; ++o)
+        {
+          const auto load16 = [&](int yy) {
+            return static_cast<std::uint32_t>(
+                _mm_movemask_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(reversedRow(o, yy) + w - x))));
+          };
+          const auto load8 = [&](int yy) {
+            return static_cast<std::uint32_t>(_mm_movemask_epi8(
+                       _mm_loadl_epi64(reinterpret_cast<const __m128i*>(reversedRow(o, yy) + w - x + 4)))) &
+                   0xFFu;
+          };
+          const std::uint64_t code = (std::uint64_t(load16(y)) << 16) | (load8(above) << 8) | load8(below);
+          words[o / 2] |= code << (32 * (o % 2));
+        }
+        row[x].words = {words[0], words[1], words[2], words[3]};
       }
-      row[x].words = {words[0], words[1], words[2], words[3]};
     }
-  }
+  });
 #else
-  std::vector<std::vector<std::uint8_t>> bits(h);  // comparisons of every row, once per orientation
+  std::vector<std::vector<std::uint8_t> > bits(h);  // comparisons of every row, once per orientation
   for (int o = 0; o < kOrientations; ++o)
   {
     const int word = o / 2, shift = 32 * (o % 2);

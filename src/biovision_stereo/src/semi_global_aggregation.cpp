@@ -345,8 +345,8 @@ void SemiGlobalAggregation::toPixelMajor(const CostVolume& costs, float lowest, 
 }
 
 void SemiGlobalAggregation::winners(const std::vector<std::uint16_t>& forward,
-                                    const std::vector<std::uint16_t>& backward, int width, int height,
-                                    int disparities, bool subpixel, cv::Mat& left, cv::Mat& right_k, Simd simd)
+                                    const std::vector<std::uint16_t>& backward, int width, int height, int disparities,
+                                    bool subpixel, cv::Mat& left, cv::Mat& right_k, Simd simd)
 {
   const size_t n = size_t(width) * height * stride(disparities);
   if (width < 1 || height < 1 || disparities < 1 || forward.size() != n || backward.size() != n)
@@ -356,7 +356,8 @@ void SemiGlobalAggregation::winners(const std::vector<std::uint16_t>& forward,
     throw std::invalid_argument("SemiGlobalAggregation::winners: this CPU has no AVX2");
   left.create(height, width, CV_32F);
   right_k.create(height, width, CV_32S);
-  const WinnerRows in{forward.data(), backward.data(), width, disparities, stride(disparities), subpixel, &left, &right_k};
+  const WinnerRows in{forward.data(),      backward.data(), width, disparities,
+                      stride(disparities), subpixel,        &left, &right_k};
   cv::parallel_for_(cv::Range(0, height), [&](const cv::Range& rows) {
     if (simd == Simd::kAvx2)
       winnerRowsAvx2(in, rows.start, rows.end);

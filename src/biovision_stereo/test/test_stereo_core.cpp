@@ -127,8 +127,8 @@ TEST(PixelDescriptor, RollingEqualsFromScratchEverywhere)
 {
   // Widths below, at and beyond the 16 comparisons of a segment, one-row images, and ties (rounded
   // responses: R(x) == R(x+1) is a 0 bit).
-  for (const cv::Size size : {cv::Size(37, 9), cv::Size(1, 1), cv::Size(2, 3), cv::Size(16, 1), cv::Size(17, 2),
-                              cv::Size(100, 4)})
+  for (const cv::Size size :
+       {cv::Size(37, 9), cv::Size(1, 1), cv::Size(2, 3), cv::Size(16, 1), cv::Size(17, 2), cv::Size(100, 4)})
     for (const bool ties : {false, true})
     {
       auto odd = randomResponses(size, 5 + size.width);
@@ -291,8 +291,8 @@ TEST(SemiGlobalAggregation, PixelMajorCostsEqualTheScalarConversion)
         for (int x = 0; x < size.width; ++x)
           for (int k = 0; k < nd; ++k)
           {
-            const auto expected = static_cast<std::uint16_t>(std::min(
-                (costs.at(x, y, k) - lowest) * scale + 0.5f, float(SemiGlobalAggregation::kMaxCost)));
+            const auto expected = static_cast<std::uint16_t>(
+                std::min((costs.at(x, y, k) - lowest) * scale + 0.5f, float(SemiGlobalAggregation::kMaxCost)));
             wrong += out[(size_t(y) * size.width + x) * stride + k] != expected;
             saturated += expected == SemiGlobalAggregation::kMaxCost;
           }

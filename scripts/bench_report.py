@@ -110,7 +110,9 @@ def splice(folder, target):
     order = list(sections)
     for path in files:
         body = section(path, folder)
-        body.insert(2, f"Spliced in {now()} from a run of this entry alone (`bench_report.py --splice`).")
+        # Machines differ (the header's may not be this one): a spliced section names its own.
+        body.insert(2, f"Spliced in {now()} on {cpu_model()}, {os.cpu_count()} cores, from a run of this entry alone "
+                    "(`bench_report.py --splice`).")
         body.insert(3, "")
         if path.stem not in sections:
             order.append(path.stem)

@@ -349,7 +349,8 @@ void SemiGlobalAggregation::winners(const std::vector<std::uint16_t>& forward,
                                     bool subpixel, cv::Mat& left, cv::Mat& right_k, Simd simd)
 {
   const size_t n = size_t(width) * height * stride(disparities);
-  if (width < 1 || height < 1 || disparities < 1 || forward.size() != n || backward.size() != n)
+  // The right view's winners are kept in 16 bits (as the volumes' values are).
+  if (width < 1 || height < 1 || disparities < 1 || disparities > 32767 || forward.size() != n || backward.size() != n)
     throw std::invalid_argument("SemiGlobalAggregation::winners: sums do not match " + std::to_string(width) + "x" +
                                 std::to_string(height) + "x" + std::to_string(disparities));
   if (simd == Simd::kAvx2 && !biovision_common::CpuFeatures::host().avx2)

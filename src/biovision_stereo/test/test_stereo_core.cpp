@@ -373,6 +373,10 @@ TEST(SemiGlobalAggregation, WinnersEqualTheScalarWinnerTakeAll)
   EXPECT_THROW(SemiGlobalAggregation::winners(std::vector<std::uint16_t>(10), std::vector<std::uint16_t>(10), 3, 3, 4,
                                               false, left, right_k, SemiGlobalAggregation::Simd::kGeneric),
                std::invalid_argument);  // sums do not match the sizes
+  const size_t wide = size_t(SemiGlobalAggregation::stride(40000));
+  EXPECT_THROW(SemiGlobalAggregation::winners(std::vector<std::uint16_t>(wide), std::vector<std::uint16_t>(wide), 1, 1,
+                                              40000, false, left, right_k, SemiGlobalAggregation::Simd::kGeneric),
+               std::invalid_argument);  // more disparities than 16 bits hold
 }
 
 TEST(SemiGlobalAggregation, EveryPathEqualsTheBruteForceReference)

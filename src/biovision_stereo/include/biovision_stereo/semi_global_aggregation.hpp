@@ -60,7 +60,7 @@ public:
   /// through S(d-1), S(d), S(d+1) (at most +-0.5 px) when `subpixel` and d is not at either end.
   /// right_k: CV_32S width x height, at right pixel xr the disparity d of least S over the left pixels
   /// xr + d that see it (the smallest d on ties), -1 where none does. Throws std::invalid_argument when the
-  /// sums do not match the sizes or kAvx2 is asked for on a CPU without it.
+  /// sums do not match the sizes, disparities is outside [1, 32767] or kAvx2 is asked for on a CPU without it.
   static void winners(const std::vector<std::uint16_t>& forward, const std::vector<std::uint16_t>& backward, int width,
                       int height, int disparities, bool subpixel, cv::Mat& left, cv::Mat& right_k, Simd simd);
   int p1() const { return p1_; }

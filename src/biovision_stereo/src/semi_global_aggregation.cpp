@@ -350,7 +350,10 @@ void SemiGlobalAggregation::winners(const std::vector<std::uint16_t>& forward,
 {
   const size_t n = size_t(width) * height * stride(disparities);
   // The right view's winners are kept in 16 bits (as the volumes' values are).
-  if (width < 1 || height < 1 || disparities < 1 || disparities > 32767 || forward.size() != n || backward.size() != n)
+  if (disparities < 1 || disparities > 32767)
+    throw std::invalid_argument("SemiGlobalAggregation::winners: disparities " + std::to_string(disparities) +
+                                " outside [1, 32767]");
+  if (width < 1 || height < 1 || forward.size() != n || backward.size() != n)
     throw std::invalid_argument("SemiGlobalAggregation::winners: sums do not match " + std::to_string(width) + "x" +
                                 std::to_string(height) + "x" + std::to_string(disparities));
   if (simd == Simd::kAvx2 && !biovision_common::CpuFeatures::host().avx2)

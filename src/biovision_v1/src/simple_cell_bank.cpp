@@ -232,16 +232,20 @@ std::vector<std::vector<cv::Mat>> SimpleCellBank::computeOdd(const cv::Mat& gray
 {
   const std::vector<std::vector<cv::Mat>> pairs = computeOddPairs(gray);
   const int n_orient = parameters_.orientations;
+  const int n_pairs = (n_orient + 1) / 2;
   std::vector<std::vector<cv::Mat>> out(pairs.size(), std::vector<cv::Mat>(n_orient));
-  for (size_t s = 0; s < pairs.size(); ++s)
-    for (size_t pair = 0; pair < pairs[s].size(); ++pair)
+  // The splits in parallel too, as they were inside the transforms' loop.
+  cv::parallel_for_(cv::Range(0, static_cast<int>(pairs.size()) * n_pairs), [&](const cv::Range& range) {
+    for (int job = range.start; job < range.end; ++job)
     {
+      const int s = job / n_pairs, pair = job % n_pairs;
       cv::Mat parts[2];
       cv::split(pairs[s][pair], parts);
       out[s][2 * pair] = parts[0];
-      if (int(2 * pair + 1) < n_orient)
+      if (2 * pair + 1 < n_orient)
         out[s][2 * pair + 1] = parts[1];
     }
+  });
   return out;
 }
 

@@ -55,6 +55,7 @@ ViewScan ViewScanner::scan(const cv::Mat& disparity, const DisparityCamera& came
   std::vector<std::vector<std::pair<float, Eigen::Vector2d>>> strip_obstacles(p.strips);
   std::vector<int> strip_valid(p.strips, 0), strip_total(p.strips, 0);
   const double fb = camera.fx * camera.baseline;
+  const double camera_height = t.z();  // base_link's z = 0 is the floor
   for (int v = p.pixel_step / 2; v < h; v += p.pixel_step)
   {
     const float* row = disparity.ptr<float>(v);
@@ -94,7 +95,12 @@ ViewScan ViewScanner::scan(const cv::Mat& disparity, const DisparityCamera& came
       }
       if (bin >= 0)  // floor
       {
-        scan.bins[bin].free_from = std::min(scan.bins[bin].free_from, static_cast<float>(range));
+        // The ray is lower than an obstacle from fraction f of its length on (f = 1: camera in the band).
+        const double f = camera_height > p.min_obstacle_height
+                             ? std::clamp((camera_height - p.min_obstacle_height) / (camera_height - pt.z()), 0.0, 1.0)
+                             : 1.0;
+        const double clear_from = (t.head<2>() + f * (pt.head<2>() - t.head<2>())).norm();
+        scan.bins[bin].free_from = std::min(scan.bins[bin].free_from, static_cast<float>(clear_from));
         seen_far[bin] = std::max(seen_far[bin], static_cast<float>(std::min(range, p.max_range)));
       }
     }

@@ -6,6 +6,7 @@
 
 #include "biovision_memory/long_term_memory.hpp"
 #include "biovision_memory/short_term_memory.hpp"
+#include "biovision_memory/view_scanner.hpp"
 #include "synthetic_view.hpp"
 
 using biovision_memory::Pose2D;
@@ -108,6 +109,55 @@ TEST(ShortTermMemorySectors, EmptyFloorIsFreeInTheViewedSectorsOnly)
     EXPECT_FALSE(sectors[i].obstacle) << i;
     EXPECT_TRUE(std::isinf(sectors[i].distance)) << i;
   }
+}
+
+// The camera cannot see the floor under its lowest rows, but it sees anything standing there: the ray to the
+// nearest floor point passes lower than min_obstacle_height from (1 − h/H) of its length on.
+TEST(ViewScanFreeSpace, StartsWhereTheRayToTheNearestFloorPointIsLowerThanAnObstacle)
+{
+  const auto cam = camera160();
+  const double tilt = 0.3, height = 1.1;
+  const auto pose = cameraPose(0.0, tilt, height);
+  const biovision_memory::ViewScanParameters p;
+  const ViewScan scan = biovision_memory::ViewScanner(p).scan(renderDisparity(cam, pose, {}), cam, pose);
+  // The lowest sampled row (pixel_step 2 from row 1) of the centre column.
+  const int v = 1 + 2 * ((120 - 1 - 1) / 2);
+  const double nearest_floor = height / std::tan(tilt + std::atan((v - cam.cy) / cam.fy));
+  const ViewScan::Bin& b = scan.bins[scan.binOf(0.0)];
+  EXPECT_NEAR(b.free_from, nearest_floor * (1 - p.min_obstacle_height / height), 0.03);
+  EXPECT_LT(b.free_from, nearest_floor - 0.15);
+  EXPECT_GE(b.free_to, p.max_range - 1e-3);
+}
+
+// A box seen 1.5 m ahead, then taken away (mission_director shows the robot its target there): the robot
+// standing still must forget it, although its cells are nearer than any floor point the camera sees.
+TEST(ViewScanFreeSpace, AnObstacleRemovedFromTheBlindFloorIsForgottenByTheLongTermMemory)
+{
+  const auto cam = camera160();
+  const auto pose = cameraPose(0.0, 0.3, 1.1);
+  ShortTermMemory stm;
+  biovision_memory::LongTermMemory ltm;
+  const double x = 1.5;
+  double t = 0.0;
+  for (int i = 0; i < 3; ++i, t += 0.5)
+  {
+    stm.update(renderDisparity(cam, pose, {{x, 0.0, 0.1, 0.4}}), cam, pose, Pose2D{}, t);
+    ltm.update(stm.lastScan(), Pose2D{}, t);
+  }
+  auto cellsNear = [&] {
+    int n = 0;
+    for (double cx = x - 0.2; cx <= x + 0.2; cx += 0.1)
+      for (double cy = -0.2; cy <= 0.2; cy += 0.1)
+        n += ltm.cellAt(cx, cy) != nullptr;
+    return n;
+  };
+  ASSERT_GT(cellsNear(), 0) << "the box was not mapped";
+  const ViewScan empty =
+      biovision_memory::ViewScanner(stm.parameters().scan).scan(renderDisparity(cam, pose, {}), cam, pose);
+  ASSERT_GT(empty.bins[empty.binOf(0.0)].free_from, 0.0f);
+  for (int i = 0; i < 6; ++i, t += 0.5)
+    ltm.update(empty, Pose2D{}, t);
+  EXPECT_EQ(cellsNear(), 0);
 }
 
 TEST(ShortTermMemorySectors, ABlindOrNanViewChangesNothing)

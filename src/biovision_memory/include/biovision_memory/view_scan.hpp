@@ -27,8 +27,11 @@ struct ViewScan
   struct Bin
   {
     float obstacle_range = kNone;  ///< nearest obstacle [m] in the bin
-    float free_from = kNone;       ///< nearest floor point seen [m]
-    float free_to = 0.0f;          ///< farthest range known free [m]: min(obstacle, farthest floor point)
+    /// Nearest range known free [m]: where the ray to the bin's nearest floor point came down to
+    /// min_obstacle_height (an obstacle there would have hidden that point), not the point itself —
+    /// the floor under the camera's lowest rows is out of view, what stands on it is not.
+    float free_from = kNone;
+    float free_to = 0.0f;  ///< farthest range known free [m]: min(obstacle, farthest floor point)
   };
 
   std::vector<Strip> strips;                     ///< left to right in the image

@@ -146,8 +146,10 @@ bool ExplorationPlanner::frontier(const Percept& percept, const cv::Point2d& hom
 {
   cv::Mat1b blocked;
   if (!percept.map.empty())
-    blocked = percept.map.inflatedObstacles(parameters_.occupied_threshold,
-                                            parameters_.robot_radius + parameters_.inflation_margin);
+  {
+    const GridPlanner::Options o = GridPlanner::optionsFor(parameters_);
+    blocked = percept.map.inflatedObstacles(o.occupied_threshold, o.radius);
+  }
   return frontier(percept, home, blocked, goal);
 }
 
@@ -183,9 +185,7 @@ bool ExplorationPlanner::frontier(const Percept& percept, const cv::Point2d& hom
     frontiers.emplace_back(score, p);
   }
   std::sort(frontiers.begin(), frontiers.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  GridPlanner::Options o;
-  o.occupied_threshold = parameters_.occupied_threshold;
-  o.radius = parameters_.robot_radius + parameters_.inflation_margin;
+  const GridPlanner::Options o = GridPlanner::optionsFor(parameters_);
   int r, c;
   const bool start_in_map = !percept.map.empty() && percept.map.cellOf(here.x, here.y, r, c);
   // Planning is the expensive part: only the best few are checked for a way there.
@@ -223,9 +223,7 @@ bool ExplorationPlanner::nextGoal(const Percept& percept, const cv::Point2d& hom
   if (!usable(percept))
     return false;
   const cv::Point2d here(percept.pose.x, percept.pose.y);
-  GridPlanner::Options o;
-  o.occupied_threshold = parameters_.occupied_threshold;
-  o.radius = parameters_.robot_radius + parameters_.inflation_margin;
+  const GridPlanner::Options o = GridPlanner::optionsFor(parameters_);
   cv::Mat1b blocked;
   if (!percept.map.empty())
     blocked = percept.map.inflatedObstacles(o.occupied_threshold, o.radius);

@@ -36,4 +36,17 @@ cv::Mat1b OccupancyMap::inflatedObstacles(int threshold, double radius) const
     cv::dilate(blocked, blocked, cv::getStructuringElement(cv::MORPH_ELLIPSE, {2 * r + 1, 2 * r + 1}));
   return blocked;
 }
+
+cv::Mat1f OccupancyMap::obstacleDistance(int threshold) const
+{
+  if (cells_.empty())
+    return {};
+  const cv::Mat1b free = (cells_ < threshold) | (cells_ == kUnknown);
+  cv::Mat1f distance;
+  if (cv::countNonZero(free) == static_cast<int>(free.total()))
+    distance = cv::Mat1f(cells_.size(), static_cast<float>(std::hypot(cells_.rows, cells_.cols)));
+  else
+    cv::distanceTransform(free, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  return distance * cell_;
+}
 }  // namespace biovision_tasks

@@ -60,9 +60,7 @@ cv::Point2d PathFollower::waypoint(const Percept& percept)
     blocked_.release();
     if (plan_ && !percept.map.empty())
     {
-      GridPlanner::Options o;
-      o.occupied_threshold = parameters_.occupied_threshold;
-      o.radius = parameters_.robot_radius + parameters_.inflation_margin;
+      const GridPlanner::Options o = GridPlanner::optionsFor(parameters_);
       OccupancyMap map = percept.map;
       if (!blocked_points_.empty())
       {
@@ -76,8 +74,7 @@ cv::Point2d PathFollower::waypoint(const Percept& percept)
         }
         map = OccupancyMap(cells, map.originX(), map.originY(), map.cellSize());
       }
-      waypoints_ = GridPlanner::plan(map, {percept.pose.x, percept.pose.y}, goal_, o);
-      blocked_ = map.inflatedObstacles(o.occupied_threshold, o.radius);
+      waypoints_ = GridPlanner::plan(map, {percept.pose.x, percept.pose.y}, goal_, o, &blocked_);
     }
     if (waypoints_.empty())
       waypoints_.push_back(goal_);

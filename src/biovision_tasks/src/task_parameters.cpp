@@ -26,6 +26,7 @@ void TaskParameters::validate() const
   check("waypoint_tolerance", waypoint_tolerance, 0.05, 5.0);
   check("robot_radius", robot_radius, 0.05, 2.0);
   check("inflation_margin", inflation_margin, 0.0, 2.0);
+  check("squeeze_margin", squeeze_margin, 0.0, 2.0);
   check("occupied_threshold", occupied_threshold, 1, 100);
   check("replan_period", replan_period, 0.1, 600.0);
   check("explore_step", explore_step, 0.2, 20.0);
@@ -53,6 +54,7 @@ const std::vector<std::pair<std::string, double TaskParameters::*>>& TaskParamet
       {"waypoint_tolerance", &TaskParameters::waypoint_tolerance},
       {"robot_radius", &TaskParameters::robot_radius},
       {"inflation_margin", &TaskParameters::inflation_margin},
+      {"squeeze_margin", &TaskParameters::squeeze_margin},
       {"replan_period", &TaskParameters::replan_period},
       {"explore_step", &TaskParameters::explore_step},
       {"explore_period", &TaskParameters::explore_period},

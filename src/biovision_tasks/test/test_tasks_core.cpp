@@ -1,5 +1,6 @@
 // Unit tests of the ROS-free task manager (thesis §5.3.3): block buffers, recursion, time-outs, failure
 // policies, the grid planner, mission parsing, and the simple macro-tasks on a kinematic point robot.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -284,6 +285,141 @@ TEST(GridPlanner, GoesAroundAWallAndKeepsClearOfIt)
     }
     from = to;
   }
+}
+
+namespace
+{
+// A 6 x 6 m map (0.1 m cells) with a wall along y = 3.05 m; `gaps` are the free column ranges [first, last].
+OccupancyMap wallWithGaps(const std::vector<std::pair<int, int>>& gaps)
+{
+  cv::Mat1b cells(60, 60, uchar(0));
+  for (int c = 0; c < 60; ++c)
+  {
+    bool open = false;
+    for (const auto& [first, last] : gaps)
+      open = open || (c >= first && c <= last);
+    if (!open)
+      cells(30, c) = 100;
+  }
+  return OccupancyMap(cells, 0, 0, 0.1);
+}
+}  // namespace
+
+TEST(OccupancyMap, ObstacleDistanceIsExactToTheNearestObstacleCentre)
+{
+  const OccupancyMap map = wallWithGaps({{27, 33}});
+  const cv::Mat1f d = map.obstacleDistance(40);
+  EXPECT_NEAR(d(30, 30), 0.4, 1e-4);  // the gap's middle: 4 cells from both ends
+  EXPECT_NEAR(d(30, 26), 0.0, 1e-4);
+  EXPECT_NEAR(d(34, 26), 0.4, 1e-4);  // straight above the wall
+  EXPECT_NEAR(d(33, 29), std::hypot(0.3, 0.3), 1e-3);
+  // Weak cells and unknown cells are free; with no obstacle the distance is large.
+  cv::Mat1b weak(10, 10, uchar(20));
+  weak(0, 0) = OccupancyMap::kUnknown;
+  EXPECT_GE(OccupancyMap(weak, 0, 0, 0.1).obstacleDistance(40)(5, 5), 1.0f);
+}
+
+TEST(GridPlanner, SqueezesThroughAGapNarrowerThanTheMarginButWiderThanTheRobot)
+{
+  // Occupied cell centres 0.8 m apart: no free cell keeps 0.41 m, the middle one keeps 0.4 m.
+  const OccupancyMap map = wallWithGaps({{27, 33}});
+  GridPlanner::Options o;  // radius 0.41, no squeeze
+  const cv::Point2d start(3.05, 1.0), goal(3.05, 5.0);
+  cv::Mat1b sight(1, 1, uchar(7));
+  EXPECT_TRUE(GridPlanner::plan(map, start, goal, o, &sight).empty());
+  EXPECT_TRUE(sight.empty()) << "no path, no mask";
+  o.lethal_radius = 0.31;
+  const auto path = GridPlanner::plan(map, start, goal, o, &sight);
+  ASSERT_FALSE(path.empty());
+  EXPECT_EQ(path.back(), goal);
+  ASSERT_EQ(sight.size(), map.cells().size());
+  // Every leg keeps the lethal radius (less half a cell of line rasterisation) from the wall cells and
+  // crosses the wall's row through the gap.
+  const cv::Mat1f distance = map.obstacleDistance(40);
+  cv::Point2d from = start;
+  bool crossed = false;
+  for (const auto& to : path)
+  {
+    for (double s = 0; s <= 1; s += 0.005)
+    {
+      const cv::Point2d q = from + (to - from) * s;
+      int r, c;
+      ASSERT_TRUE(map.cellOf(q.x, q.y, r, c));
+      EXPECT_GE(distance(r, c), o.lethal_radius - 0.05) << q;
+      if (r == 30)
+      {
+        crossed = true;
+        EXPECT_EQ(c, 30) << q;
+      }
+    }
+    from = to;
+  }
+  EXPECT_TRUE(crossed);
+  // The planner's own lineOfSight agrees with the legs it returned.
+  from = start;
+  for (const auto& to : path)
+  {
+    EXPECT_TRUE(GridPlanner::lineOfSight(map, sight, from, to)) << from << " -> " << to;
+    from = to;
+  }
+  // A goal within the lethal radius of the wall has no path.
+  EXPECT_TRUE(GridPlanner::plan(map, start, {2.0, 3.25}, o).empty());
+}
+
+TEST(GridPlanner, AStartInsideTheInflationLeavesItWithoutGettingCloser)
+{
+  // The robot stands 0.2 m from a wall (inside the 0.41 m inflation), 1 m beside a 2 m gap; the goal is
+  // beyond the gap. The way there never comes nearer the wall than the start: it used to run along the
+  // wall inside the inflation, closer still, towards the gap's edge.
+  const OccupancyMap map = wallWithGaps({{20, 39}});
+  GridPlanner::Options o;
+  const cv::Point2d start(1.05, 2.85), goal(3.05, 4.5);
+  const auto path = GridPlanner::plan(map, start, goal, o);
+  ASSERT_FALSE(path.empty());
+  const cv::Mat1f distance = map.obstacleDistance(40);
+  int r, c;
+  ASSERT_TRUE(map.cellOf(start.x, start.y, r, c));
+  const float at_start = distance(r, c);
+  ASSERT_LT(at_start, o.radius);
+  cv::Point2d from = start;
+  for (const auto& to : path)
+  {
+    for (double s = 0; s <= 1; s += 0.01)
+    {
+      const cv::Point2d q = from + (to - from) * s;
+      ASSERT_TRUE(map.cellOf(q.x, q.y, r, c));
+      EXPECT_GE(distance(r, c), at_start - 1e-4) << q;
+    }
+    from = to;
+  }
+}
+
+TEST(GridPlanner, AWideWayRoundIsPreferredToASqueeze)
+{
+  // The narrow gap of the last test and a 2 m wide one 2 m further on.
+  const OccupancyMap map = wallWithGaps({{27, 33}, {50, 59}});
+  GridPlanner::Options o;
+  const cv::Point2d start(3.05, 1.0), goal(3.05, 5.0);
+  const auto wide = GridPlanner::plan(map, start, goal, o);
+  ASSERT_FALSE(wide.empty());
+  o.lethal_radius = 0.31;
+  const auto with_squeeze = GridPlanner::plan(map, start, goal, o);
+  ASSERT_EQ(with_squeeze.size(), wide.size());
+  for (size_t i = 0; i < wide.size(); ++i)
+    EXPECT_EQ(with_squeeze[i], wide[i]);
+  EXPECT_TRUE(std::any_of(wide.begin(), wide.end(), [](const cv::Point2d& p) { return p.x > 4.9; }))
+      << "the path goes through the wide gap";
+}
+
+TEST(GridPlanner, OptionsForTheTaskParametersSqueezeOnlyInsideTheMargin)
+{
+  TaskParameters p;
+  GridPlanner::Options o = GridPlanner::optionsFor(p);
+  EXPECT_DOUBLE_EQ(o.radius, p.robot_radius + p.inflation_margin);
+  EXPECT_DOUBLE_EQ(o.lethal_radius, p.robot_radius + p.squeeze_margin);
+  EXPECT_EQ(o.occupied_threshold, p.occupied_threshold);
+  p.squeeze_margin = p.inflation_margin;
+  EXPECT_EQ(GridPlanner::optionsFor(p).lethal_radius, 0.0);
 }
 
 TEST(ExplorationPlanner, HeadsForAFrontierOfWhatTheCameraSawButNotOneBehindAWall)

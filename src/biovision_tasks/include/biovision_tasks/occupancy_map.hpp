@@ -30,6 +30,10 @@ public:
   /// margin): 255 where the robot's centre may not go, else 0. Unknown cells are free (exploration is
   /// optimistic; the base's STM avoids what the map has not seen).
   cv::Mat1b inflatedObstacles(int threshold, double radius) const;
+  /// Euclidean distance [m] from each cell's centre to the nearest obstacle cell's centre (strength >=
+  /// threshold, unknown = free), CV_32FC1 of the map's size; large (the map's diagonal) with no obstacle.
+  /// Exact, unlike inflatedObstacles' whole-cell discs: GridPlanner's squeeze pass needs the true gap.
+  cv::Mat1f obstacleDistance(int threshold) const;
 
 private:
   cv::Mat1b cells_;

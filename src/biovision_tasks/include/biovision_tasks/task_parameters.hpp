@@ -16,11 +16,14 @@ struct TaskParameters
   double waypoint_tolerance = 0.5;  ///< [m] a waypoint of the planned path counts as passed within this
   double robot_radius = 0.26;       ///< [m] the Pioneer 3DX's footprint (simulator and URDF)
   double inflation_margin = 0.15;   ///< [m] added to the radius when planning over the LTM
-  int occupied_threshold = 40;      ///< [0..100] LTM strength that blocks planning: 40 = P_R/M_R·100 = one
-                                    ///< sighting's initial strength (memory's README); phantoms fade below it
-  double replan_period = 4.0;       ///< [s] excursions replan over the LTM this often (it keeps changing)
-  double explore_step = 1.5;        ///< [m] exploration picks goals this far away ...
-  double explore_period = 12.0;     ///< [s] ... and a new one at least this often
+  /// [m] the least clearance beyond the radius a plan keeps when no path keeps inflation_margin (GridPlanner's
+  /// squeeze pass; >= inflation_margin: none): half an LTM cell, the error of a cell-centre distance.
+  double squeeze_margin = 0.05;
+  int occupied_threshold = 40;   ///< [0..100] LTM strength that blocks planning: 40 = P_R/M_R·100 = one
+                                 ///< sighting's initial strength (memory's README); phantoms fade below it
+  double replan_period = 4.0;    ///< [s] excursions replan over the LTM this often (it keeps changing)
+  double explore_step = 1.5;     ///< [m] exploration picks goals this far away ...
+  double explore_period = 12.0;  ///< [s] ... and a new one at least this often
   /// [s] at each new exploration goal the base stops and the head explores this long; while driving the
   /// head then looks ahead, so the base never drives where the camera is not looking (0 = the head explores
   /// all the time, the thesis's way: 17 collisions in mission_eval's 10 report rooms)

@@ -43,10 +43,11 @@ bool GridPlanner::lineOfSight(const OccupancyMap& map, const cv::Mat1b& blocked,
 namespace
 {
 // A* over the 8-connected grid from (sr, sc) to (gr, gc) avoiding `blocked`, each step costing its length plus
-// `extra` of the cell entered. A start inside `blocked` leaves it moving away from the obstacles only
-// (`distance` from OccupancyMap::obstacleDistance strictly growing): letting it move freely inside, as before,
-// gave paths that ran along the inflation band hugging the obstacle the robot stood next to (the demo's base
-// pressed against the new crate it was trapped by). Cells of the path, start first; empty when there is none.
+// `extra` of the cell entered. A start inside `blocked` leaves it never getting nearer an obstacle (`distance`
+// from OccupancyMap::obstacleDistance never shrinking; read only then, so it may be empty for a start
+// outside): letting it move freely inside, as before, gave paths that ran along the inflation band hugging
+// the obstacle the robot stood next to (the demo's base pressed against the new crate it was trapped by).
+// Cells of the path, start first; empty when there is none.
 std::vector<cv::Point> searchGrid(const cv::Mat1b& blocked, const cv::Mat1f& distance, const cv::Mat1f& extra, int sr,
                                   int sc, int gr, int gc)
 {
@@ -74,7 +75,7 @@ std::vector<cv::Point> searchGrid(const cv::Mat1b& blocked, const cv::Mat1f& dis
       continue;  // stale entry
     // Once out of the inflation, stay out of it.
     const bool escaping = blocked(row, col) != 0;
-    const float clearance = distance(row, col);
+    const float clearance = escaping ? distance(row, col) : 0.0f;
     for (int dr = -1; dr <= 1; ++dr)
       for (int dc = -1; dc <= 1; ++dc)
       {
@@ -122,7 +123,14 @@ std::vector<cv::Point2d> GridPlanner::plan(const OccupancyMap& map, const cv::Po
   if (!map.cellOf(start.x, start.y, sr, sc) || !map.cellOf(goal.x, goal.y, gr, gc))
     return {};
   const cv::Mat1b inflated = map.inflatedObstacles(options.occupied_threshold, options.radius);
-  const cv::Mat1f distance = map.obstacleDistance(options.occupied_threshold);
+  // The distance transform only when it is read (a start in the inflation, the squeeze pass): the
+  // exploration planner plans dozens of times per goal over the same map.
+  cv::Mat1f distance;
+  const auto distances = [&]() -> const cv::Mat1f& {
+    if (distance.empty())
+      distance = map.obstacleDistance(options.occupied_threshold);
+    return distance;
+  };
   // Near-obstacle cost: cells within one more radius of the inflated obstacles.
   cv::Mat1b near;
   const int r = std::max(1, static_cast<int>(std::ceil(options.radius / map.cellSize())));
@@ -133,17 +141,17 @@ std::vector<cv::Point2d> GridPlanner::plan(const OccupancyMap& map, const cv::Po
   std::vector<cv::Point> cells;
   cv::Mat1b shorten = inflated;
   if (!inflated(gr, gc))
-    cells = searchGrid(inflated, distance, extra, sr, sc, gr, gc);
+    cells = searchGrid(inflated, inflated(sr, sc) ? distances() : distance, extra, sr, sc, gr, gc);
   if (cells.empty() && options.lethal_radius > 0 && options.lethal_radius < options.radius)
   {
     // Squeeze: only the lethal radius blocks; the margin costs margin_cost a cell.
-    const cv::Mat1b lethal = distance < static_cast<float>(options.lethal_radius);
+    const cv::Mat1b lethal = distances() < static_cast<float>(options.lethal_radius);
     if (lethal(gr, gc))
       return {};
-    const cv::Mat1b margin = distance < static_cast<float>(options.radius);
+    const cv::Mat1b margin = distances() < static_cast<float>(options.radius);
     cv::Mat1f margin_extra;
     margin.convertTo(margin_extra, CV_32F, options.margin_cost / 255.0);
-    cells = searchGrid(lethal, distance, extra + margin_extra, sr, sc, gr, gc);
+    cells = searchGrid(lethal, distances(), extra + margin_extra, sr, sc, gr, gc);
     if (!cells.empty())
     {
       // Shortcuts may cross the margin only where the path itself does (next to its cells), not hug

@@ -38,10 +38,10 @@ public:
 
   /// Plans from `start` to `goal` [m, map frame]. Returns the waypoints after the start, the last being the
   /// goal; empty when there is no path or either end is outside the map. A start inside the inflated
-  /// obstacles (the robot brushed a wall) may leave them, moving away from the obstacles only; a goal inside them has no path (inside
-  /// the lethal radius, with the squeeze pass). `sight`, when given, receives the mask the waypoints were
-  /// shortened against (lineOfSight's `blocked`: the inflated obstacles, or after a squeeze those minus
-  /// the margin cells next to the path); it is emptied when there is no path.
+  /// obstacles (the robot brushed a wall) may leave them, never getting nearer an obstacle; a goal inside
+  /// them has no path (inside the lethal radius, with the squeeze pass). `sight`, when given, receives the
+  /// mask the waypoints were shortened against (lineOfSight's `blocked`: the inflated obstacles, or after a
+  /// squeeze those minus the margin cells next to the path); it is emptied when there is no path.
   static std::vector<cv::Point2d> plan(const OccupancyMap& map, const cv::Point2d& start, const cv::Point2d& goal,
                                        const Options& options, cv::Mat1b* sight = nullptr);
   /// True when the straight segment a→b [m, map] crosses no inflated obstacle cell (`blocked` from

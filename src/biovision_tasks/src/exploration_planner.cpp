@@ -44,7 +44,8 @@ const std::pair<int, int>& key(const std::pair<int, int>& c)
 {
   return c;
 }
-const std::pair<int, int>& key(const std::pair<const std::pair<int, int>, double>& c)
+template <typename Value>
+const std::pair<int, int>& key(const std::pair<const std::pair<int, int>, Value>& c)
 {
   return c.first;
 }
@@ -166,7 +167,7 @@ bool ExplorationPlanner::frontier(const Percept& percept, const cv::Point2d& hom
     const cv::Point2d p = centreOf(c);
     const double distance = std::hypot(p.x - here.x, p.y - here.y);
     // Too near to be worth a drive (the look round reveals it); boring: a goal the base could not reach.
-    if (distance < 2 * parameters_.visit_cell || visits(p) >= 30.0)
+    if (distance < 2 * parameters_.visit_cell || visits(p) >= 30.0 || excluded(c, percept.time))
       continue;
     int r, col;
     if (!blocked.empty() && percept.map.cellOf(p.x, p.y, r, col) && blocked(r, col))
@@ -200,14 +201,35 @@ bool ExplorationPlanner::frontier(const Percept& percept, const cv::Point2d& hom
   return false;
 }
 
-void ExplorationPlanner::markBoring(const cv::Point2d& point, double seconds)
+void ExplorationPlanner::markUnreachable(const cv::Point2d& point, double time)
 {
-  if (!(std::abs(point.x) <= kMaxCoordinate && std::abs(point.y) <= kMaxCoordinate))
+  if (!(std::abs(point.x) <= kMaxCoordinate && std::abs(point.y) <= kMaxCoordinate) || !std::isfinite(time))
     return;
   const auto [cx, cy] = cellOf(point);
   for (int dx = -1; dx <= 1; ++dx)
     for (int dy = -1; dy <= 1; ++dy)
-      visits_[{cx + dx, cy + dy}] += seconds;
+    {
+      Failure& f = failures_[{cx + dx, cy + dy}];
+      f.count = std::min(f.count + 1, 16);
+      // Doubling with each failure: a place the base cannot reach from anywhere is soon left alone.
+      f.until = time + parameters_.frontier_retry_time * std::ldexp(1.0, f.count - 1);
+    }
+  forgetFarthest(failures_, cellOf(point), kMaxCells);
+}
+
+bool ExplorationPlanner::excluded(const Cell& cell, double time) const
+{
+  const auto it = failures_.find(cell);
+  return it != failures_.end() && time < it->second.until;
+}
+
+double ExplorationPlanner::boredom(const cv::Point2d& point) const
+{
+  const double v = visits(point);
+  if (!(std::abs(point.x) <= kMaxCoordinate && std::abs(point.y) <= kMaxCoordinate))
+    return v;
+  const auto it = failures_.find(cellOf(point));
+  return it == failures_.end() ? v : v + kUnreachableBoredom * it->second.count;
 }
 
 double ExplorationPlanner::visits(const cv::Point2d& point) const
@@ -242,7 +264,7 @@ bool ExplorationPlanner::nextGoal(const Percept& percept, const cv::Point2d& hom
         continue;
       // Boredom of the goal and of the way there (the midpoint), a little cost for turning and distance.
       const double turn = std::abs(std::remainder(bearing - percept.pose.yaw, 2 * M_PI));
-      const double score = visits(p) + 0.5 * visits((here + p) * 0.5) + 0.2 * turn + 0.2 * ring +
+      const double score = boredom(p) + 0.5 * boredom((here + p) * 0.5) + 0.2 * turn + 0.2 * ring +
                            parameters_.home_range_cost * std::hypot(p.x - home.x, p.y - home.y);
       if (score >= best)
         continue;

@@ -124,7 +124,7 @@ void SearchTask::onAct(const Percept& percept, MotorCommand& command)
   const bool stale = percept.time - goal_time_ >= parameters_.explore_period;
   const bool trapped = trapped_since_ >= 0 && percept.time - trapped_since_ > 2.0;
   if (trapped && has_goal_)
-    exploration_.markBoring(goal, 60.0);
+    exploration_.markUnreachable(goal, percept.time);
   if (!has_goal_ || reached || stale || trapped)
   {
     cv::Point2d next;

@@ -35,6 +35,7 @@ void TaskParameters::validate() const
   check("visit_cell", visit_cell, 0.05, 5.0);
   check("view_range", view_range, 0.0, 20.0);
   check("view_angle", view_angle, 0.01, 6.3);
+  check("frontier_retry_time", frontier_retry_time, 1.0, 36000.0);
   check("home_range_cost", home_range_cost, 0.0, 100.0);
   check("trapped_timeout", trapped_timeout, 1.0, 3600.0);
   check("stall_time", stall_time, 1.0, 3600.0);
@@ -62,6 +63,7 @@ const std::vector<std::pair<std::string, double TaskParameters::*>>& TaskParamet
       {"visit_cell", &TaskParameters::visit_cell},
       {"view_range", &TaskParameters::view_range},
       {"view_angle", &TaskParameters::view_angle},
+      {"frontier_retry_time", &TaskParameters::frontier_retry_time},
       {"home_range_cost", &TaskParameters::home_range_cost},
       {"trapped_timeout", &TaskParameters::trapped_timeout},
       {"stall_time", &TaskParameters::stall_time},

@@ -38,6 +38,9 @@ struct TaskParameters
   double view_range = 2.5;
   double view_angle =
       0.75;  ///< [rad] the view about the camera's heading that counts as seen: the Bumblebee-2's 0.75 rad
+  /// [s] a frontier the base could not reach is tried again after this, twice as long after each further
+  /// failure (ExplorationPlanner::markUnreachable; before: never again)
+  double frontier_retry_time = 60.0;
   double home_range_cost = 0.1;   ///< [s of boredom per m] goals far from home cost more, so the robot covers the area
                                   ///< round home before wandering off in a straight line; 0.1 completed the
                                   ///< most missions on mission_eval's tune seeds 101-110 (0.1/0.3/0.5 gave 7/7/4)

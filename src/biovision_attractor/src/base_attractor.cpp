@@ -81,6 +81,7 @@ void BaseAttractor::reset()
 {
   stop();
   newGoal();
+  turning_in_place_ = false;
 }
 
 double BaseAttractor::clearanceAhead(const std::vector<Sector>& stm) const
@@ -237,6 +238,15 @@ BaseAttractor::Output BaseAttractor::update(const std::vector<Sector>& stm, doub
     // for 200 s; tune seeds 101-300 / 301-500 completed 185 / 174 -> 185 / 178 of 200).
     if (out.front_clearance < p_.safety_distance && std::abs(goal_bearing) > M_PI / 2)
       rate = out.goal_forcelet;
+    // A goal heading_stop_angle off (the speed is 0 there): turn in place by its attraction alone until it is
+    // within turn_in_place_angle. Repellers beside the base otherwise balanced the weak pull of a goal behind
+    // it and held the heading at a fixed point with v = 0 (mission_eval report seed 4: 200 s).
+    if (std::abs(goal_bearing) >= p_.heading_stop_angle)
+      turning_in_place_ = true;
+    else if (std::abs(goal_bearing) < p_.turn_in_place_angle)
+      turning_in_place_ = false;
+    if (turning_in_place_)
+      rate = out.goal_forcelet;
     out.heading_rate = rate;
     {
       target_angular = std::clamp(rate, -p_.max_angular, p_.max_angular);
@@ -274,12 +284,17 @@ BaseAttractor::Output BaseAttractor::update(const std::vector<Sector>& stm, doub
                             std::clamp((c - p_.safety_distance) / (p_.slow_distance - p_.safety_distance), 0.0, 1.0));
         v = std::min(v, std::sqrt(2 * 0.8 * p_.linear_accel * (c - p_.safety_distance)));
       }
+      if (turning_in_place_)
+        v = 0.0;
       target_linear = v;
     }
   }
   // Leaving the trap state restores normal steering; every other state forgets a pending escape.
   if (out.status == Status::kIdle || out.status == Status::kReached)
+  {
     escape_until_ = -1.0;
+    turning_in_place_ = false;
+  }
 
   target_linear = std::isfinite(target_linear) ? std::clamp(target_linear, 0.0, p_.max_linear) : 0.0;
   target_angular = std::isfinite(target_angular) ? std::clamp(target_angular, -p_.max_angular, p_.max_angular) : 0.0;

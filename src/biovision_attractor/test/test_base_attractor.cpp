@@ -240,6 +240,20 @@ TEST(BaseAttractorClosedLoop, DrivesAroundABoxDeadAhead)
   EXPECT_LT(r.path_length / r.straight_line, 1.5);
 }
 
+TEST(BaseAttractorClosedLoop, TurnsRoundToAGoalBehindBetweenTwoBoxesBesideIt)
+{
+  // Boxes at the front left and front right, the goal behind on the right: the repellers balanced the weak
+  // pull of the goal behind, the speed was 0 there and the heading stayed at that fixed point (mission_eval
+  // report seed 4: 200 s in one place). Turning in place by the goal's attraction alone gets it out.
+  biovision_sim::World world;
+  world.addObject(box("left", 0.75, 0.65, 0.4, 0.4));
+  world.addObject(box("right", 0.65, -0.6, 0.4, 0.4));
+  const NavigationTrialResult r = drive(world, -2.0, -2.5);
+  EXPECT_TRUE(r.reached);
+  EXPECT_EQ(r.collisions, 0);
+  EXPECT_LT(r.time, 20.0) << "without the turn in place: 31.8 s, after the trap detection's escape";
+}
+
 TEST(BaseAttractorProperty, CommandsStayWithinTheLimitsAndFiniteUnderRandomAndNaNInput)
 {
   std::mt19937 rng(16);

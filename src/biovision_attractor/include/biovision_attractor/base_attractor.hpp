@@ -24,7 +24,8 @@ namespace biovision_attractor
 /// reaches heading_stop_angle; a linear fall to 0 as the clearance in the swept corridor ahead falls from
 /// slow_distance to safety_distance, and the speed that can still brake by then; the speed that brakes
 /// onto the goal. Slewed by linear_accel, except that a clearance below safety_distance stops at once.
-/// The base never reverses.
+/// The base never reverses. Once the goal is heading_stop_angle off, the base turns in place by the goal's
+/// attraction alone (no repellers) until the goal is within turn_in_place_angle.
 ///
 /// Trap detection: when the goal distance has not fallen by trap_progress for trap_time (a bearing-only
 /// goal: when the robot has not moved forward by trap_progress for trap_time), the status is kTrapped for
@@ -102,8 +103,9 @@ private:
   double progress_time_ = 0.0;  // when progress was last made [s]
   double escape_until_ = -1.0;  // [s] trapped until then
   int escape_side_ = 1;
-  double travelled_ = 0.0;       // [m] commanded forward travel (progress towards a bearing-only goal)
-  double heading_ = 0.0;         // [rad] integrated commanded turn rate since the goal was set
-  double escape_heading_ = 0.0;  // [rad] in the same reckoning: where an escape heads
+  bool turning_in_place_ = false;  // the goal was heading_stop_angle off: turning in place towards it
+  double travelled_ = 0.0;         // [m] commanded forward travel (progress towards a bearing-only goal)
+  double heading_ = 0.0;           // [rad] integrated commanded turn rate since the goal was set
+  double escape_heading_ = 0.0;    // [rad] in the same reckoning: where an escape heads
 };
 }  // namespace biovision_attractor

@@ -38,7 +38,12 @@ struct BaseAttractorParameters
       ///< tune seeds 101-130: no limit 8 collisions, 0.1: 3, 0.05: 0; docs/benchmarks.md)
   double blind_distance = 1.0;      ///< [m] see blind_speed
   double heading_stop_angle = 1.6;  ///< [rad] the speed falls linearly to 0 when the goal is this far off the heading
-  double goal_tolerance = 0.2;      ///< [m] reached: closer than this to the goal (then stops)
+  /// [rad] once the goal is heading_stop_angle off, the base turns in place by the goal's attraction alone until
+  /// it is within this angle. Why: repellers beside the base balanced the weak pull of a goal behind it, v = 0,
+  /// the heading at a fixed point for 200 s (mission_eval report seed 4; tune 101-1300 completed 1166 -> 1181,
+  /// collisions 14 -> 3); a disc turning in place hits nothing.
+  double turn_in_place_angle = 0.8;
+  double goal_tolerance = 0.2;  ///< [m] reached: closer than this to the goal (then stops)
   // Trap detection (not in the thesis).
   double trap_time = 12.0;     ///< [s] no progress (goal distance not down by trap_progress) this long: trapped
   double trap_progress = 0.3;  ///< [m]

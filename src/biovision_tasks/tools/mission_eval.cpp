@@ -83,7 +83,8 @@ int main(int argc, char** argv)
   std::vector<std::string> settings;
   options.app().add_option(
       "--set", settings,
-      "a task parameter NAME=VALUE, a base controller parameter base.NAME=VALUE or a short-term memory "
+      "a task parameter NAME=VALUE, a base controller parameter base.NAME=VALUE, a head controller parameter "
+      "head.NAME=VALUE or a short-term memory "
       "parameter stm.obstacle_horizon_time|free_horizon_time|horizon_distance|map_completion_radius=VALUE "
       "(repeatable), "
       "e.g. home_range_cost=0.3 base.blind_speed=0.05");
@@ -95,6 +96,7 @@ int main(int argc, char** argv)
 
   TaskParameters tasks;
   biovision_attractor::BaseAttractorParameters base;
+  biovision_attractor::HeadAttractorParameters head;
   for (const std::string& s : settings)
   {
     const auto eq = s.find('=');
@@ -123,6 +125,12 @@ int main(int argc, char** argv)
         base.*named.field = value;
         known = true;
       }
+    for (const auto& [head_name, field] : biovision_attractor::HeadAttractorParameters::namedDoubles())
+      if (eq != std::string::npos && name == "head." + head_name)
+      {
+        head.*field = value;
+        known = true;
+      }
     const std::pair<const char*, double biovision_memory::ShortTermMemoryParameters::*> stm_fields[] = {
         {"stm.obstacle_horizon_time", &biovision_memory::ShortTermMemoryParameters::obstacle_horizon_time},
         {"stm.free_horizon_time", &biovision_memory::ShortTermMemoryParameters::free_horizon_time},
@@ -137,7 +145,8 @@ int main(int argc, char** argv)
     if (!known)
     {
       std::cerr << "mission_eval: --set " << s << ": not NAME=VALUE of a task parameter, base.NAME=VALUE of a base "
-                << "controller parameter or stm.NAME=VALUE of a short-term memory parameter\n";
+                << "controller parameter, head.NAME=VALUE of a head controller parameter or stm.NAME=VALUE of a "
+                << "short-term memory parameter\n";
       return 2;
     }
   }
@@ -145,6 +154,7 @@ int main(int argc, char** argv)
   {
     tasks.validate();
     base.validate();
+    head.validate();
     trial.stm.validate();
   }
   catch (const std::invalid_argument& e)
@@ -152,7 +162,6 @@ int main(int argc, char** argv)
     std::cerr << "mission_eval: " << e.what() << "\n";
     return 2;
   }
-  const biovision_attractor::HeadAttractorParameters head;
   nlohmann::ordered_json document, per_trial = nlohmann::ordered_json::array();
   document["command"] = "rosrun biovision_tasks mission_eval " + options.command();
   int completed = 0, found = 0, returned = 0, collisions = 0;
@@ -254,7 +263,9 @@ int main(int argc, char** argv)
       "frontiers the base could not reach tried again after frontier_retry_time, doubling (before: never; "
       "101-1300 completed 1157 -> 1166, collisions 14 -> 14; 30 / 60 / 120 s: 1160 / 1166 / 1161), the base "
       "turning in place by the goal alone once it is heading_stop_angle off (1166 -> 1181, collisions 14 -> 3; "
-      "turn_in_place_angle 0.4 / 0.8 / 1.2 rad: 1183 / 1181 / 1184, collisions 5 / 3 / 7); nothing on these seeds. "
+      "turn_in_place_angle 0.4 / 0.8 / 1.2 rad: 1183 / 1181 / 1184, collisions 5 / 3 / 7), the head's "
+      "look_ahead_duration (2 / 3 s: completed 1181 / 1186, mean time 139 / 128 s, "
+      "collisions 3 / 4; 4 s on 101-500: 5 collisions); nothing on these seeds. "
       "Each trial's "
       "collision_details say what was hit, "
       "during which task, where on the base's rim and what the sectors held there. Once the "

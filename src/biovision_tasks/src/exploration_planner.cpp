@@ -262,6 +262,10 @@ bool ExplorationPlanner::nextGoal(const Percept& percept, const cv::Point2d& hom
       const bool in_map = !percept.map.empty() && percept.map.cellOf(p.x, p.y, r, c);
       if (in_map && blocked(r, c))
         continue;
+      // Beyond the map's extent nothing blocks the goal itself, but the way there must not cross a known
+      // obstacle: make demo's corridor got goals 1 m behind its walls, which no plan reached.
+      if (!in_map && !inSight(percept.map, here, p, parameters_.occupied_threshold))
+        continue;
       // Boredom of the goal and of the way there (the midpoint), a little cost for turning and distance.
       const double turn = std::abs(std::remainder(bearing - percept.pose.yaw, 2 * M_PI));
       const double score = boredom(p) + 0.5 * boredom((here + p) * 0.5) + 0.2 * turn + 0.2 * ring +

@@ -472,6 +472,26 @@ TEST(ExplorationPlanner, HeadsForAFrontierOfWhatTheCameraSawButNotOneBehindAWall
   EXPECT_FALSE(off.frontier(p, {-4.0, 0.0}, goal));
 }
 
+TEST(ExplorationPlanner, ABoredomGoalBeyondTheMapIsNotBehindAKnownWall)
+{
+  // A corridor along x whose map ends 0.3 m beyond its walls; the robot faces the left wall. Boredom's
+  // candidate straight ahead lies outside the map, so nothing blocked it: make demo drove at goals 1 m
+  // behind the corridor's walls.
+  TaskParameters parameters;
+  parameters.view_range = 0;  // boredom only
+  parameters.explore_step = 3.0;
+  cv::Mat1b cells(30, 60, uchar(0));
+  cells.row(2).setTo(100);   // y = -1.25
+  cells.row(27).setTo(100);  // y = +1.25
+  Percept p = at(1.0, 1.0, 0.0, M_PI / 2);
+  p.map = OccupancyMap(cells, -1.0, -1.5, 0.1);
+  ExplorationPlanner planner(parameters);
+  planner.recordVisit(p);
+  cv::Point2d goal;
+  ASSERT_TRUE(planner.nextGoal(p, {1.0, 0.0}, goal));
+  EXPECT_LT(std::abs(goal.y), 1.2) << goal.x << ", " << goal.y;
+}
+
 TEST(ExplorationPlanner, AnUnreachableFrontierIsTriedAgainLaterAndLessOftenEachTime)
 {
   // A base wedged at one spot once struck off every frontier of the room for good, one each 2.4 s, and never

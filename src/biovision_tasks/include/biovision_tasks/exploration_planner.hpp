@@ -20,8 +20,8 @@ namespace biovision_tasks
 /// 1 and 2 × explore_step) that is least visited, free in the LTM and reachable over it (beyond its extent: in
 /// sight over it), preferring the heading and points near home (home_range_cost). A goal the base could not
 /// reach (it got trapped) is no frontier for a while and more boring for good (markUnreachable).
-/// Deterministic: no random numbers. Bounded memory: beyond kMaxCells seen (or visited) cells, the half farthest from the robot is forgotten (a long run in a big or
-/// unmapped world). Poses that are not finite or farther than kMaxCoordinate from the origin are ignored.
+/// Deterministic: no random numbers. Bounded memory: beyond kMaxCells seen (or visited) cells, the half
+/// farthest from the robot is forgotten (a long run in a big or unmapped world). Poses that are not finite or farther than kMaxCoordinate from the origin are ignored.
 class ExplorationPlanner
 {
 public:

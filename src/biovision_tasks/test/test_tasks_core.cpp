@@ -422,16 +422,27 @@ TEST(GridPlanner, OptionsForTheTaskParametersSqueezeOnlyInsideTheMargin)
   EXPECT_EQ(GridPlanner::optionsFor(p).lethal_radius, 0.0);
 }
 
-TEST(ExplorationPlanner, HeadsForAFrontierOfWhatTheCameraSawButNotOneBehindAWall)
+namespace
 {
-  TaskParameters parameters;
+// At (-4, 0) looking east in a 10 m square room walled round (its LTM: 100 x 100 cells of 0.1 m from (-5, -5)).
+Percept inWalledRoom(cv::Mat1b& cells)
+{
   Percept p;
   p.pose_valid = true;
   p.pose = {-4.0, 0.0, 0.0};
-  p.view_yaw = 0.0;  // looking east
-  cv::Mat1b cells(100, 100, uchar(0));
+  p.view_yaw = 0.0;
+  cells = cv::Mat1b(100, 100, uchar(0));
   cv::rectangle(cells, cv::Rect(0, 0, 100, 100), 100, 2);
   p.map = OccupancyMap(cells, -5, -5, 0.1);
+  return p;
+}
+}  // namespace
+
+TEST(ExplorationPlanner, HeadsForAFrontierOfWhatTheCameraSawButNotOneBehindAWall)
+{
+  TaskParameters parameters;
+  cv::Mat1b cells;
+  Percept p = inWalledRoom(cells);
   ExplorationPlanner open(parameters);
   open.recordVisit(p);
   cv::Point2d goal;
@@ -497,13 +508,8 @@ TEST(ExplorationPlanner, AnUnreachableFrontierIsTriedAgainLaterAndLessOftenEachT
   // A base wedged at one spot once struck off every frontier of the room for good, one each 2.4 s, and never
   // explored the target's side (mission_eval report seeds 4, 6, 42).
   TaskParameters parameters;
-  Percept p;
-  p.pose_valid = true;
-  p.pose = {-4.0, 0.0, 0.0};
-  p.view_yaw = 0.0;
-  cv::Mat1b cells(100, 100, uchar(0));
-  cv::rectangle(cells, cv::Rect(0, 0, 100, 100), 100, 2);
-  p.map = OccupancyMap(cells, -5, -5, 0.1);
+  cv::Mat1b cells;
+  Percept p = inWalledRoom(cells);
   ExplorationPlanner planner(parameters);
   planner.recordVisit(p);
   cv::Point2d first;

@@ -28,8 +28,10 @@ fi
 # Pictures (panel.png from monitor_panel, pan.png, rates.png) and one self-contained report.html.
 rosrun biovision_monitor run_report "$out" >"$out/run_report.log" 2>&1 ||
   { echo "demo: run_report failed:"; cat "$out/run_report.log"; }
+# The report's title first, then the mission's outcome, then the rest of the report (topics, tf).
+head -n 1 "$out/report.md"; echo
 [[ -f "$out/mission.md" ]] && { cat "$out/mission.md"; echo; }
-cat "$out/report.md"
+tail -n +2 "$out/report.md"
 [[ -f "$out/fixations.md" ]] && { echo; cat "$out/fixations.md"; }
 [[ -f "$out/recognition.md" ]] && { echo; cat "$out/recognition.md"; }
 [[ -f "$out/report.html" ]] && { echo; echo "Pictures and report: $out/report.html"; }

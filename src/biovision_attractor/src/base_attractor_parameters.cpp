@@ -29,7 +29,7 @@ const std::vector<BaseAttractorParameters::Named>& BaseAttractorParameters::name
       {"blind_speed", &P::blind_speed, 0.0, 1.2},
       {"blind_distance", &P::blind_distance, 0.01, 10.0},
       {"heading_stop_angle", &P::heading_stop_angle, 0.1, 3.1416},
-      {"turn_in_place_angle", &P::turn_in_place_angle, 0.0, 3.1416},
+      {"turn_in_place_angle", &P::turn_in_place_angle, 0.05, 3.1416},
       {"goal_tolerance", &P::goal_tolerance, 0.01, 2.0},
       {"trap_time", &P::trap_time, 1.0, 600.0},
       {"trap_progress", &P::trap_progress, 0.01, 10.0},

@@ -254,6 +254,31 @@ TEST(BaseAttractorClosedLoop, TurnsRoundToAGoalBehindBetweenTwoBoxesBesideIt)
   EXPECT_LT(r.time, 20.0) << "without the turn in place: 31.8 s, after the trap detection's escape";
 }
 
+TEST(BaseAttractorClosedLoop, EveryAllowedTurnInPlaceAngleEndsTheTurnAndReachesAGoalBehind)
+{
+  // turn_in_place_angle 0 was once accepted and never ended the turn (the goal's sine pull only nears 0
+  // exponentially): the base stood turning for good. Its lower bound and the default, in free space.
+  biovision_sim::World world;
+  world.addObject(box("far", 20.0, 20.0, 0.2, 0.2));  // nothing near
+  for (double angle : {0.05, BaseAttractorParameters().turn_in_place_angle, 3.1416})
+  {
+    BaseAttractorParameters p;
+    p.turn_in_place_angle = angle;
+    ASSERT_NO_THROW(p.validate());
+    NavigationTrialOptions options;
+    options.active_head = false;
+    options.timeout = 60;
+    const biovision_sim::FloorPlan plan(world);
+    const NavigationTrialResult r = runNavigationTrial(
+        world, 0, 0, 0, -4.0, 0.1, p, HeadAttractorParameters(), options,
+        [&plan] { return std::make_unique<GroundTruthRangeStm>(plan, GroundTruthRangeStm::Options()); });
+    EXPECT_TRUE(r.reached) << "turn_in_place_angle " << angle;
+  }
+  BaseAttractorParameters zero;
+  zero.turn_in_place_angle = 0.0;
+  EXPECT_THROW(zero.validate(), std::invalid_argument);
+}
+
 TEST(BaseAttractorProperty, CommandsStayWithinTheLimitsAndFiniteUnderRandomAndNaNInput)
 {
   std::mt19937 rng(16);

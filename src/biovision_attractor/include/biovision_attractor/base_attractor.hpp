@@ -25,7 +25,8 @@ namespace biovision_attractor
 /// slow_distance to safety_distance, and the speed that can still brake by then; the speed that brakes
 /// onto the goal. Slewed by linear_accel, except that a clearance below safety_distance stops at once.
 /// The base never reverses. Once the goal is heading_stop_angle off, the base turns in place by the goal's
-/// attraction alone (no repellers) until the goal is within turn_in_place_angle.
+/// attraction alone (no repellers) until the goal is within turn_in_place_angle; newGoal() keeps that turn
+/// (a waypoint moving a little must not end it), reset(), idle and reached end it.
 ///
 /// Trap detection: when the goal distance has not fallen by trap_progress for trap_time (a bearing-only
 /// goal: when the robot has not moved forward by trap_progress for trap_time), the status is kTrapped for

@@ -41,7 +41,8 @@ struct BaseAttractorParameters
   /// [rad] once the goal is heading_stop_angle off, the base turns in place by the goal's attraction alone until
   /// it is within this angle. Why: repellers beside the base balanced the weak pull of a goal behind it, v = 0,
   /// the heading at a fixed point for 200 s (mission_eval report seed 4; tune 101-1300 completed 1166 -> 1181,
-  /// collisions 14 -> 3); a disc turning in place hits nothing.
+  /// collisions 14 -> 3); a disc turning in place hits nothing. At least 0.05: the goal's sine pull only nears
+  /// 0 exponentially, and 0 (allowed at first) never ended the turn: the base never drove again.
   double turn_in_place_angle = 0.8;
   double goal_tolerance = 0.2;  ///< [m] reached: closer than this to the goal (then stops)
   // Trap detection (not in the thesis).

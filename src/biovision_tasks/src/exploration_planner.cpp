@@ -97,6 +97,7 @@ void ExplorationPlanner::recordVisit(const Percept& percept)
     const Cell here = cellOf({percept.pose.x, percept.pose.y});
     visits_[here] += std::min(percept.time - last_time_, 1.0);
     forgetFarthest(visits_, here, kMaxCells);
+    robot_cell_ = here;
   }
   last_time_ = percept.time;
   markSeen(percept);
@@ -166,7 +167,8 @@ bool ExplorationPlanner::frontier(const Percept& percept, const cv::Point2d& hom
   {
     const cv::Point2d p = centreOf(c);
     const double distance = std::hypot(p.x - here.x, p.y - here.y);
-    // Too near to be worth a drive (the look round reveals it); boring: a goal the base could not reach.
+    // Too near to be worth a drive (the look round reveals it); 30 s spent there; or struck off for now (a goal
+    // the base could not reach, markUnreachable).
     if (distance < 2 * parameters_.visit_cell || visits(p) >= 30.0 || excluded(c, percept.time))
       continue;
     int r, col;
@@ -214,7 +216,8 @@ void ExplorationPlanner::markUnreachable(const cv::Point2d& point, double time)
       // Doubling with each failure: a place the base cannot reach from anywhere is soon left alone.
       f.until = time + parameters_.frontier_retry_time * std::ldexp(1.0, f.count - 1);
     }
-  forgetFarthest(failures_, cellOf(point), kMaxCells);
+  // Round the robot, as the visits: the failures farthest from it matter least.
+  forgetFarthest(failures_, robot_cell_, kMaxCells);
 }
 
 bool ExplorationPlanner::excluded(const Cell& cell, double time) const

@@ -21,7 +21,8 @@ namespace biovision_tasks
 /// sight over it), preferring the heading and points near home (home_range_cost). A goal the base could not
 /// reach (it got trapped) is no frontier for a while and more boring for good (markUnreachable).
 /// Deterministic: no random numbers. Bounded memory: beyond kMaxCells seen (or visited) cells, the half
-/// farthest from the robot is forgotten (a long run in a big or unmapped world). Poses that are not finite or farther than kMaxCoordinate from the origin are ignored.
+/// farthest from the robot is forgotten (a long run in a big or unmapped world), and so are failures. Poses
+/// that are not finite or farther than kMaxCoordinate from the origin are ignored.
 class ExplorationPlanner
 {
 public:
@@ -66,18 +67,19 @@ private:
   void markSeen(const Percept& percept);
   bool usable(const Percept& percept) const;
   bool excluded(const Cell& cell, double time) const;
+  bool frontier(const Percept& percept, const cv::Point2d& home, const cv::Mat1b& blocked, cv::Point2d& goal) const;
 
   struct Failure
   {
     int count = 0;       ///< failures to reach the cell (capped at 16)
     double until = 0.0;  ///< [s] no frontier before this
   };
-  bool frontier(const Percept& percept, const cv::Point2d& home, const cv::Mat1b& blocked, cv::Point2d& goal) const;
 
   TaskParameters parameters_;
   std::map<Cell, double> visits_;
   std::set<Cell> seen_;
   std::map<Cell, Failure> failures_;
+  Cell robot_cell_{0, 0};  // of the last visit recorded
   double last_time_ = -1;
 };
 }  // namespace biovision_tasks

@@ -84,14 +84,15 @@ void BaseAttractor::reset()
   turning_in_place_ = false;
 }
 
-double BaseAttractor::clearanceAhead(const std::vector<Sector>& stm) const
+double BaseAttractor::clearanceAhead(const std::vector<Sector>& stm, double half_corridor, int side) const
 {
   // The nearest obstacle whose sector reaches into the corridor the robot sweeps going straight.
-  const double half_corridor = p_.robot_radius + p_.corridor_margin;
   double clearance = kInf;
   for (const Sector& s : stm)
   {
     if (!usable(s) || !(s.distance < kInf) || confidenceOf(s) < p_.min_confidence)
+      continue;
+    if (side * wrap(s.angle) < 0)
       continue;
     const double d = std::max(0.0, s.distance);
     const double nearest_angle = std::max(0.0, std::abs(wrap(s.angle)) - s.width / 2);
@@ -164,7 +165,8 @@ BaseAttractor::Output BaseAttractor::update(const std::vector<Sector>& stm, doub
   out.strength.assign(stm.size(), 0.0);
   out.sigma.assign(stm.size(), 0.0);
   out.forcelet.assign(stm.size(), 0.0);
-  out.front_clearance = clearanceAhead(stm);
+  out.front_clearance = clearanceAhead(stm, p_.robot_radius + p_.corridor_margin, 0);
+  out.contact_clearance = clearanceAhead(stm, p_.robot_radius, 0);
 
   double target_linear = 0.0, target_angular = 0.0;
   bool brake_now = false;
@@ -270,19 +272,38 @@ BaseAttractor::Output BaseAttractor::update(const std::vector<Sector>& stm, doub
         v = std::min(v, p_.blind_speed);
       if (std::isfinite(goal_distance))
         v = std::min(v, std::sqrt(2 * 0.8 * p_.linear_accel * std::max(0.0, goal_distance - p_.goal_tolerance / 2)));
-      const double c = out.front_clearance;
-      if (c < p_.safety_distance)
+      // The speed the clearance c allows: 0 below safety_distance, a linear rise to max_linear at slow_distance,
+      // and no more than can brake by safety_distance.
+      const auto clearance_speed = [this](double c) {
+        if (!(c < kInf))
+          return p_.max_linear;
+        if (c < p_.safety_distance)
+          return 0.0;
+        return std::min(p_.max_linear * std::clamp((c - p_.safety_distance) / (p_.slow_distance - p_.safety_distance),
+                                                   0.0, 1.0),
+                        std::sqrt(2 * 0.8 * p_.linear_accel * (c - p_.safety_distance)));
+      };
+      // An obstacle in the corridor's margin alone slows the base to margin_speed but does not stop it while it
+      // drives straight or turns away from that side: the disc then passes it. Stopping there held the base
+      // 0.35 m beside a crate's corner, the waypoint dead ahead, until the task gave up (make demo,
+      // 2026-12-04). Turning towards it still stops: out of view the STM holds few points of a face alongside
+      // (navigation_eval tune seeds 101-300, fixed head: 15 collisions with the margin always stopping,
+      // 29 when it never did).
+      const double half_corridor = p_.robot_radius + p_.corridor_margin;
+      const bool towards_margin = (target_angular > 0 && clearanceAhead(stm, half_corridor, 1) < p_.safety_distance) ||
+                                  (target_angular < 0 && clearanceAhead(stm, half_corridor, -1) < p_.safety_distance);
+      const bool margin_stops = p_.margin_speed == 0.0 || towards_margin;
+      if (out.contact_clearance < p_.safety_distance || (margin_stops && out.front_clearance < p_.safety_distance))
       {
         if (out.status == Status::kDriving)
           out.status = Status::kBlocked;
         v = 0.0;
         brake_now = true;
       }
-      else if (c < kInf)
+      else
       {
-        v = std::min(v, p_.max_linear *
-                            std::clamp((c - p_.safety_distance) / (p_.slow_distance - p_.safety_distance), 0.0, 1.0));
-        v = std::min(v, std::sqrt(2 * 0.8 * p_.linear_accel * (c - p_.safety_distance)));
+        v = std::min(v, std::max(clearance_speed(out.front_clearance),
+                                 std::min(p_.margin_speed, clearance_speed(out.contact_clearance))));
       }
       if (turning_in_place_)
         v = 0.0;

@@ -24,6 +24,7 @@ const std::vector<BaseAttractorParameters::Named>& BaseAttractorParameters::name
       {"safety_distance", &P::safety_distance, 0.0, 2.0},
       {"slow_distance", &P::slow_distance, 0.01, 5.0},
       {"corridor_margin", &P::corridor_margin, 0.0, 1.0},
+      {"margin_speed", &P::margin_speed, 0.0, 1.2},
       {"turn_slowdown", &P::turn_slowdown, 0.1, 20.0},
       {"blind_turn_rate", &P::blind_turn_rate, 0.0, 20.0},
       {"blind_speed", &P::blind_speed, 0.0, 1.2},

@@ -161,6 +161,48 @@ TEST(BaseAttractorFixedPoints, StopsAtTheSafetyDistanceAndAtTheGoal)
   EXPECT_EQ(reached.angular, 0.0);
 }
 
+TEST(BaseAttractorFixedPoints, AnObstacleInTheCorridorsMarginAloneSlowsToMarginSpeedUnlessTurningTowardsIt)
+{
+  // A crate's corner beside the path: +60 deg, 0.36 m out. Its sector's near edge (50 deg) is 0.28 m from the
+  // line ahead: inside the swept corridor (R + corridor_margin = 0.36) but outside the disc (R = 0.26).
+  BaseAttractorParameters p;
+  p.alpha_obstacle = 0.0;  // no repeller: the goal alone sets the turn, so each side can be tested
+  auto corner = freeSectors();
+  corner[at(60)].distance = p.robot_radius + 0.1;  // clearance 0.1 < safety_distance
+  {
+    BaseAttractor a(p);
+    const auto out = settle(a, corner, -0.3);  // turning right, away from it
+    EXPECT_EQ(out.status, BaseAttractor::Status::kDriving);
+    EXPECT_LT(out.front_clearance, p.safety_distance);
+    EXPECT_EQ(out.contact_clearance, kInf);
+    EXPECT_GT(out.linear, 0.0);
+    EXPECT_LE(out.linear, p.margin_speed + 1e-12);
+  }
+  {
+    BaseAttractor a(p);
+    const auto out = settle(a, corner, 0.3);  // turning left, towards it
+    EXPECT_EQ(out.status, BaseAttractor::Status::kBlocked);
+    EXPECT_EQ(out.linear, 0.0);
+  }
+  {
+    BaseAttractorParameters stop = p;
+    stop.margin_speed = 0.0;
+    BaseAttractor a(stop);
+    const auto out = settle(a, corner, -0.3);
+    EXPECT_EQ(out.status, BaseAttractor::Status::kBlocked);
+    EXPECT_EQ(out.linear, 0.0);
+  }
+  {
+    // The same distance in the disc's own path (+20 deg: near edge 10 deg, 0.06 m from the line) stops it.
+    BaseAttractor a(p);
+    auto ahead = freeSectors();
+    ahead[at(20)].distance = p.robot_radius + 0.1;
+    const auto out = settle(a, ahead, -0.3);
+    EXPECT_EQ(out.status, BaseAttractor::Status::kBlocked);
+    EXPECT_EQ(out.linear, 0.0);
+  }
+}
+
 TEST(BaseAttractorFixedPoints, BlockedInANarrowGapWithTheGoalBehindTurnsRoundToIt)
 {
   // Wedged in a gap narrower than the swept corridor (a wall on one side, a plant on the other, 0.14 and
@@ -177,7 +219,10 @@ TEST(BaseAttractorFixedPoints, BlockedInANarrowGapWithTheGoalBehindTurnsRoundToI
   {
     a.reset();
     const auto out = settle(a, gap, bearing);
-    EXPECT_EQ(out.status, BaseAttractor::Status::kBlocked) << bearing;
+    // Turning towards the plant (margin side) the margin stops it (blocked); turning away it creeps no faster
+    // than margin_speed, but the goal behind holds it turning in place.
+    if (bearing > 0)
+      EXPECT_EQ(out.status, BaseAttractor::Status::kBlocked) << bearing;
     EXPECT_EQ(out.linear, 0.0) << bearing;
     EXPECT_GT(out.angular * (bearing > 0 ? 1 : -1), 0.5 * a.parameters().alpha_goal * std::sin(std::abs(bearing)))
         << "turns towards the goal at " << bearing << " rad";

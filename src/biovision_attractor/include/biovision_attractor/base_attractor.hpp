@@ -24,6 +24,10 @@ namespace biovision_attractor
 /// reaches heading_stop_angle; a linear fall to 0 as the clearance in the swept corridor ahead falls from
 /// slow_distance to safety_distance, and the speed that can still brake by then; the speed that brakes
 /// onto the goal. Slewed by linear_accel, except that a clearance below safety_distance stops at once.
+/// The corridor is R + corridor_margin to either side; an obstacle in its margin alone (one the disc R
+/// going straight would pass) slows the base to margin_speed but does not stop it while the base turns
+/// away from it or not at all: the clearance in the disc's own path (contact_clearance) below
+/// safety_distance stops it, and so does the margin's when turning towards it (margin_speed 0: always).
 /// The base never reverses. Once the goal is heading_stop_angle off, the base turns in place by the goal's
 /// attraction alone (no repellers) until the goal is within turn_in_place_angle; newGoal() keeps that turn
 /// (a waypoint moving a little must not end it), reset(), idle and reached end it.
@@ -64,6 +68,7 @@ public:
     double goal_forcelet = 0.0;    ///< the goal attraction's share of heading_rate [rad/s]
     double target_speed = 0.0;     ///< the forward speed the dynamics head for [m/s]
     double front_clearance = 0.0;  ///< [m] clearance in the swept corridor ahead (+Inf: free)
+    double contact_clearance = 0.0;  ///< [m] the same in the path of the disc R alone, no margin (+Inf: free)
     int turn_side = 0;             ///< +1 left / -1 right: where a dead-ahead obstacle is passed; 0 none
     int invalid_sectors = 0;       ///< sectors ignored for a NaN/Inf angle or a NaN distance
     Status status = Status::kIdle;
@@ -91,7 +96,9 @@ public:
   static const char* name(Status status);
 
 private:
-  double clearanceAhead(const std::vector<Sector>& stm) const;
+  /// The clearance [m] (distance less R) of the nearest obstacle whose sector reaches within half_width of the
+  /// line ahead (+Inf: none); side +1 / -1: only the sectors left / right of it (and dead ahead), 0: all.
+  double clearanceAhead(const std::vector<Sector>& stm, double half_width, int side) const;
   int freerSide(const std::vector<Sector>& stm, double goal_bearing) const;
   bool blindAhead(const std::vector<Sector>& stm) const;
   void updateTrapClock(double goal_distance, double t);

@@ -1,5 +1,6 @@
 #include "biovision_memory/long_term_memory.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -79,7 +80,7 @@ int LongTermMemory::forget(double stamp)
   return removed;
 }
 
-void LongTermMemory::observe(double x, double y, double stamp)
+void LongTermMemory::observe(double x, double y, double stamp, float bottom, float top)
 {
   const int ix = cellIndex(x), iy = cellIndex(y);
   const std::int64_t k = key(ix, iy);
@@ -92,6 +93,8 @@ void LongTermMemory::observe(double x, double y, double stamp)
     c.strength = parameters_.rules.initial_strength;
     c.observations = 1;
     c.first_seen = c.last_seen = c.last_change = stamp;
+    c.bottom = bottom;
+    c.top = top;
     cells_.emplace(k, c);
   }
   else
@@ -100,8 +103,27 @@ void LongTermMemory::observe(double x, double y, double stamp)
     c.strength = parameters_.rules.reinforce(c.strength);
     ++c.observations;
     c.last_seen = c.last_change = stamp;
+    c.bottom = std::fmin(c.bottom, bottom);  // fmin/fmax skip a NaN: the band of the sightings with heights
+    c.top = std::fmax(c.top, top);
   }
   touch(k);
+}
+
+bool LongTermMemory::inViewByHeight(const ViewScan& scan, const ViewScan::Bin& bin, const Cell& cell,
+                                    const Eigen::Vector2d& base_point)
+{
+  // A ray to the floor at distance D from the camera crosses height h at D·(1 − h/H): the cell's band
+  // [bottom, top] at distance r is crossed by the rays landing in [r·H/(H − bottom), r·H/(H − top)]. The
+  // top 5 cm are left out: the ray that grazes an obstacle's top edge lands right behind it.
+  constexpr double kTopMargin = 0.05;
+  const double H = scan.camera_height;
+  const double top = cell.top - kTopMargin;
+  if (!std::isfinite(cell.bottom) || !std::isfinite(cell.top) || !(H > top) || !(cell.bottom >= 0) ||
+      !(top > cell.bottom) || !std::isfinite(bin.floor_near))
+    return false;
+  const double r = (base_point - scan.camera_position).norm();
+  const double nearest_landing = r * H / (H - cell.bottom), farthest_landing = r * H / (H - top);
+  return farthest_landing >= bin.floor_near && nearest_landing <= bin.floor_far;
 }
 
 LongTermMemory::UpdateStats LongTermMemory::update(const ViewScan& scan, const Pose2D& map_from_base, double stamp)
@@ -111,20 +133,28 @@ LongTermMemory::UpdateStats LongTermMemory::update(const ViewScan& scan, const P
     return stats;
   stats.removed += forget(stamp);
   // (a) cells with enough obstacle points this frame.
-  std::unordered_map<std::int64_t, int> counts;
+  struct Points
+  {
+    int n = 0;
+    float bottom = std::numeric_limits<float>::infinity(), top = -std::numeric_limits<float>::infinity();
+  };
+  std::unordered_map<std::int64_t, Points> counts;
   for (const Eigen::Vector3d& p : scan.obstacle_points)
   {
     const Eigen::Vector2d m = map_from_base.apply(p.head<2>());
-    ++counts[key(cellIndex(m.x()), cellIndex(m.y()))];
+    Points& c = counts[key(cellIndex(m.x()), cellIndex(m.y()))];
+    ++c.n;
+    c.bottom = std::min(c.bottom, static_cast<float>(p.z()));
+    c.top = std::max(c.top, static_cast<float>(p.z()));
   }
   std::unordered_set<std::int64_t> seen;
-  for (const auto& [k, n] : counts)
+  for (const auto& [k, points] : counts)
   {
-    if (n < parameters_.min_points)
+    if (points.n < parameters_.min_points)
       continue;
     const int ix = static_cast<int>(k >> 32), iy = static_cast<int>(static_cast<std::int32_t>(k & 0xffffffff));
     const bool existed = cells_.count(k) > 0;
-    observe(cellCentre(ix), cellCentre(iy), stamp);
+    observe(cellCentre(ix), cellCentre(iy), stamp, points.bottom, points.top);
     (existed ? stats.reinforced : stats.added)++;
     seen.insert(k);
   }
@@ -147,7 +177,7 @@ LongTermMemory::UpdateStats LongTermMemory::update(const ViewScan& scan, const P
       continue;
     }
     const ViewScan::Bin& v = scan.bins[bin];
-    if (range >= v.free_from && range < v.free_to - parameters_.free_margin)
+    if ((range >= v.free_from || inViewByHeight(scan, v, c, b)) && range < v.free_to - parameters_.free_margin)
     {
       c.strength = parameters_.rules.weaken(c.strength);
       c.last_change = stamp;

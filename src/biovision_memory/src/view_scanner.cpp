@@ -40,6 +40,7 @@ ViewScan ViewScanner::scan(const cv::Mat& disparity, const DisparityCamera& came
   ViewScan scan;
   scan.max_range = p.max_range;
   scan.camera_position = t.head<2>();
+  scan.camera_height = t.z();
   scan.strips.resize(p.strips);
   for (int i = 0; i < p.strips; ++i)
     scan.strips[i].centre_bearing = bearingOfColumn((i + 0.5) * w / p.strips - 0.5);
@@ -100,7 +101,11 @@ ViewScan ViewScanner::scan(const cv::Mat& disparity, const DisparityCamera& came
                              ? std::clamp((camera_height - p.min_obstacle_height) / (camera_height - pt.z()), 0.0, 1.0)
                              : 1.0;
         const double clear_from = (t.head<2>() + f * (pt.head<2>() - t.head<2>())).norm();
-        scan.bins[bin].free_from = std::min(scan.bins[bin].free_from, static_cast<float>(clear_from));
+        ViewScan::Bin& b = scan.bins[bin];
+        b.free_from = std::min(b.free_from, static_cast<float>(clear_from));
+        const float from_camera = static_cast<float>((pt.head<2>() - t.head<2>()).norm());
+        b.floor_near = std::min(b.floor_near, from_camera);
+        b.floor_far = std::max(b.floor_far, from_camera);
         seen_far[bin] = std::max(seen_far[bin], static_cast<float>(std::min(range, p.max_range)));
       }
     }

@@ -32,6 +32,11 @@ struct ViewScan
     /// the floor under the camera's lowest rows is out of view, what stands on it is not.
     float free_from = kNone;
     float free_to = 0.0f;  ///< farthest range known free [m]: min(obstacle, farthest floor point)
+    /// Nearest / farthest floor point of the bin [m], as distances from camera_position on the floor (kNone /
+    /// 0: no floor seen). A ray to the floor at distance D crosses height h at D·(1 − h/camera_height): what
+    /// LongTermMemory uses to tell whether a remembered obstacle of known heights would have been in view.
+    float floor_near = kNone;
+    float floor_far = 0.0f;
   };
 
   std::vector<Strip> strips;                     ///< left to right in the image
@@ -40,6 +45,7 @@ struct ViewScan
   std::vector<Bin> bins;                         ///< covers the camera's view
   std::vector<Eigen::Vector3d> obstacle_points;  ///< base_link [m], between the obstacle heights, within range
   Eigen::Vector2d camera_position{0.0, 0.0};     ///< the left camera's floor position in base_link [m]
+  double camera_height = 0.0;                    ///< the left camera above the floor [m] (0: unknown)
   double max_range = 0.0;                        ///< [m]
   int valid_pixels = 0;                          ///< pixels with a usable disparity
   int invalid_pixels = 0;                        ///< NaN, ±Inf, ≤ 0 or kInvalid

@@ -66,15 +66,21 @@ bool LandmarkCorrector::observe(const Eigen::Vector2d& map_position, const Eigen
   }
   mo /= window_.size();
   mm /= window_.size();
-  double spread = 0.0, sxx = 0.0, sxy = 0.0;  // cross-covariance terms: Σ o·m and Σ o×m
+  // The heading is observable only from landmarks apart in the map: one landmark seen from many places has
+  // its odometry positions spread by noise and drift alone, and atan2 of that near-zero covariance is a
+  // random angle (make demo, 2026-12-04: the target as sole landmark turned the map 30 deg about it, home
+  // 9 m off). So the spread is the lesser of the two sides'.
+  double spread_odom = 0.0, spread_map = 0.0, sxx = 0.0, sxy = 0.0;  // cross-covariance: Σ o·m and Σ o×m
   for (const Pair& p : window_)
   {
     const Eigen::Vector2d a = p.odom - mo, b = p.map - mm;
-    spread = std::max(spread, a.norm());
+    spread_odom = std::max(spread_odom, a.norm());
+    spread_map = std::max(spread_map, b.norm());
     sxx += a.dot(b);
     sxy += a.x() * b.y() - a.y() * b.x();
   }
   Pose2D fit;
+  const double spread = std::min(spread_odom, spread_map);
   fit.yaw = spread >= parameters_.min_spread ? std::atan2(sxy, sxx) : map_from_odom_.yaw;
   const double c = std::cos(fit.yaw), s = std::sin(fit.yaw);
   fit.x = mm.x() - (c * mo.x() - s * mo.y());

@@ -30,7 +30,8 @@ struct LandmarkCorrectorParameters
 /// o_i = odom_from_base · (its position in base_link). Over a sliding window (count and time) the 2-D
 /// rigid transform T minimising Σ |T·o_i − m_i|² is fitted in closed form (Procrustes/Umeyama in 2-D:
 /// centroids, then the heading from the cross-covariance); when the window's sightings are closer together
-/// than min_spread, only the translation is fitted (the heading is not observable) and the current heading
+/// than min_spread — in odometry or in the map: one landmark seen from many places is spread in odometry by
+/// its noise alone, and gives no heading —, only the translation is fitted (the heading is not observable) and the current heading
 /// kept. The estimate moves by `gain` towards the fit per sighting (a first-order filter that smooths the
 /// stereo noise of single sightings). Sightings implying a jump larger than max_jump are ignored.
 /// Not thread-safe.

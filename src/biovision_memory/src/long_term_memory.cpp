@@ -80,7 +80,7 @@ int LongTermMemory::forget(double stamp)
   return removed;
 }
 
-void LongTermMemory::observe(double x, double y, double stamp, float bottom, float top)
+void LongTermMemory::observe(double x, double y, double stamp, float top)
 {
   const int ix = cellIndex(x), iy = cellIndex(y);
   const std::int64_t k = key(ix, iy);
@@ -93,7 +93,6 @@ void LongTermMemory::observe(double x, double y, double stamp, float bottom, flo
     c.strength = parameters_.rules.initial_strength;
     c.observations = 1;
     c.first_seen = c.last_seen = c.last_change = stamp;
-    c.bottom = bottom;
     c.top = top;
     cells_.emplace(k, c);
   }
@@ -103,8 +102,7 @@ void LongTermMemory::observe(double x, double y, double stamp, float bottom, flo
     c.strength = parameters_.rules.reinforce(c.strength);
     ++c.observations;
     c.last_seen = c.last_change = stamp;
-    c.bottom = std::fmin(c.bottom, bottom);  // fmin/fmax skip a NaN: the band of the sightings with heights
-    c.top = std::fmax(c.top, top);
+    c.top = std::fmax(c.top, top);  // fmax skips a NaN: the highest of the sightings with heights
   }
   touch(k);
 }
@@ -112,17 +110,17 @@ void LongTermMemory::observe(double x, double y, double stamp, float bottom, flo
 bool LongTermMemory::inViewByHeight(const ViewScan& scan, const ViewScan::Bin& bin, const Cell& cell,
                                     const Eigen::Vector2d& base_point)
 {
-  // A ray to the floor at distance D from the camera crosses height h at D·(1 − h/H): the cell's band
-  // [bottom, top] at distance r is crossed by the rays landing in [r·H/(H − bottom), r·H/(H − top)]. The
-  // top 5 cm are left out: the ray that grazes an obstacle's top edge lands right behind it.
+  // A ray to the floor at distance D from the camera crosses height h at D·(1 − h/H). An obstacle is taken to
+  // stand on the floor, as free_from does: the cell's column from min_obstacle_height to its top is crossed
+  // by the rays landing in [r·H/(H − min_obstacle_height), r·H/(H − top)]. The top 5 cm are left out: a ray
+  // through the cell's centre that low still passes over a face at the cell's near edge.
   constexpr double kTopMargin = 0.05;
-  const double H = scan.camera_height;
+  const double H = scan.camera_height, bottom = std::max(0.0, scan.min_obstacle_height);
   const double top = cell.top - kTopMargin;
-  if (!std::isfinite(cell.bottom) || !std::isfinite(cell.top) || !(H > top) || !(cell.bottom >= 0) ||
-      !(top > cell.bottom) || !std::isfinite(bin.floor_near))
+  if (!std::isfinite(cell.top) || !(H > top) || !(top > bottom) || !std::isfinite(bin.floor_near))
     return false;
   const double r = (base_point - scan.camera_position).norm();
-  const double nearest_landing = r * H / (H - cell.bottom), farthest_landing = r * H / (H - top);
+  const double nearest_landing = r * H / (H - bottom), farthest_landing = r * H / (H - top);
   return farthest_landing >= bin.floor_near && nearest_landing <= bin.floor_far;
 }
 
@@ -136,7 +134,7 @@ LongTermMemory::UpdateStats LongTermMemory::update(const ViewScan& scan, const P
   struct Points
   {
     int n = 0;
-    float bottom = std::numeric_limits<float>::infinity(), top = -std::numeric_limits<float>::infinity();
+    float top = -std::numeric_limits<float>::infinity();
   };
   std::unordered_map<std::int64_t, Points> counts;
   for (const Eigen::Vector3d& p : scan.obstacle_points)
@@ -144,7 +142,6 @@ LongTermMemory::UpdateStats LongTermMemory::update(const ViewScan& scan, const P
     const Eigen::Vector2d m = map_from_base.apply(p.head<2>());
     Points& c = counts[key(cellIndex(m.x()), cellIndex(m.y()))];
     ++c.n;
-    c.bottom = std::min(c.bottom, static_cast<float>(p.z()));
     c.top = std::max(c.top, static_cast<float>(p.z()));
   }
   std::unordered_set<std::int64_t> seen;
@@ -154,7 +151,7 @@ LongTermMemory::UpdateStats LongTermMemory::update(const ViewScan& scan, const P
       continue;
     const int ix = static_cast<int>(k >> 32), iy = static_cast<int>(static_cast<std::int32_t>(k & 0xffffffff));
     const bool existed = cells_.count(k) > 0;
-    observe(cellCentre(ix), cellCentre(iy), stamp, points.bottom, points.top);
+    observe(cellCentre(ix), cellCentre(iy), stamp, points.top);
     (existed ? stats.reinforced : stats.added)++;
     seen.insert(k);
   }

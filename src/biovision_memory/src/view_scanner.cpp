@@ -41,6 +41,7 @@ ViewScan ViewScanner::scan(const cv::Mat& disparity, const DisparityCamera& came
   scan.max_range = p.max_range;
   scan.camera_position = t.head<2>();
   scan.camera_height = t.z();
+  scan.min_obstacle_height = p.min_obstacle_height;
   scan.strips.resize(p.strips);
   for (int i = 0; i < p.strips; ++i)
     scan.strips[i].centre_bearing = bearingOfColumn((i + 0.5) * w / p.strips - 0.5);

@@ -124,44 +124,46 @@ TEST(LongTermMemoryReinforcement, OnlyCellsInViewAndInsideTheFreeRangeAreExpecte
   EXPECT_EQ(strengthAt(ltm, 2.05, 0.05), 0);
 }
 
-TEST(LongTermMemoryReinforcement, ACellOfKnownHeightsNearerThanTheFloorSeenIsExpectedWhereRaysCrossIt)
+TEST(LongTermMemoryReinforcement, ACellOfKnownTopNearerThanTheFloorSeenIsExpectedWhereRaysCrossIt)
 {
   // A camera 1.1 m up at base_link's origin sees the floor from 1.7 m to 3 m (free_from 1.55 m, as the rays
-  // to 1.7 m come down to 0.1 m there). A box 0.1-0.45 m high 1.15 m ahead is crossed by the rays landing at
-  // 1.15·1.1/1.0 = 1.27 m … 1.15·1.1/(1.1 − 0.4) = 1.81 m (its top 5 cm left out): those to 1.7-1.81 m.
+  // to 1.7 m come down to min_obstacle_height 0.1 m there). A box 0.45 m high 1.15 m ahead is crossed between
+  // 0.1 m and its top less 5 cm by the rays landing at 1.15·1.1/1.0 = 1.27 m … 1.15·1.1/(1.1 − 0.4) = 1.81 m:
+  // those to 1.7-1.81 m.
   ViewScan scan = freeScan();
   scan.camera_height = 1.1;
+  scan.min_obstacle_height = 0.1;
   for (auto& b : scan.bins)
   {
     b.free_from = 1.55f;
     b.floor_near = 1.7f;
     b.floor_far = 3.0f;
   }
+  scan.bins[scan.binOf(std::atan2(-0.45, 1.05))].floor_far = 1.2f;  // floor seen only up to 1.2 m there
   LongTermMemory ltm;
-  ltm.observe(1.15, 0.05, 0, 0.1f, 0.45f);  // the box seen once, with its heights
-  ltm.observe(1.15, -0.25, 0);              // heights unknown (e.g. loaded from the database)
-  ltm.observe(1.15, 0.35, 0, 0.1f, 0.3f);   // a low box: its rays land at 1.27 … 1.61 m, nearer than the floor seen
-  ltm.observe(1.05, -0.45, 0, 0.7f, 0.8f);  // a table top: rays land at 2.89 … 3.85 m, beyond the floor seen
+  ltm.observe(1.15, 0.05, 0, 0.45f);   // the box, seen once with its top
+  ltm.observe(1.15, -0.25, 0);         // top unknown (e.g. loaded from the database)
+  ltm.observe(1.15, 0.35, 0, 0.3f);    // a low box: its rays land at 1.32 … 1.55 m, nearer than the floor seen
+  ltm.observe(1.05, -0.45, 0, 0.8f);   // its rays land from 1.26 m on, beyond the floor seen on that bearing
   ltm.update(scan, Pose2D{}, 1);
   EXPECT_EQ(strengthAt(ltm, 1.15, 0.05), 0) << "the box would have been seen: it is gone";
-  EXPECT_EQ(strengthAt(ltm, 1.15, -0.25), 40) << "unknown heights: nearer than free_from, not expected";
+  EXPECT_EQ(strengthAt(ltm, 1.15, -0.25), 40) << "top unknown: nearer than free_from, not expected";
   EXPECT_EQ(strengthAt(ltm, 1.15, 0.35), 40) << "no ray seen crosses the low box";
-  EXPECT_EQ(strengthAt(ltm, 1.05, -0.45), 40) << "no ray seen crosses the table top";
-  // Seen again with other heights: the cell keeps the widest band.
-  ltm.observe(1.15, 0.35, 2, 0.05f, 0.5f);
+  EXPECT_EQ(strengthAt(ltm, 1.05, -0.45), 40) << "no ray seen crosses that cell";
+  // Seen again, higher: the cell keeps the highest top.
+  ltm.observe(1.15, 0.35, 2, 0.5f);
+  ltm.observe(1.15, 0.35, 3, 0.2f);
   const auto* c = ltm.cellAt(1.15, 0.35);
   ASSERT_NE(c, nullptr);
-  EXPECT_FLOAT_EQ(c->bottom, 0.05f);
   EXPECT_FLOAT_EQ(c->top, 0.5f);
-  // update() records the heights of the points that made the cell.
+  // update() records the highest of the points that made the cell.
   ViewScan seen = scanWithPoints(2.05, 0.05);
-  seen.obstacle_points.front().z() = 0.2;
+  seen.obstacle_points.front().z() = 0.7;
   LongTermMemory fresh;
   fresh.update(seen, Pose2D{}, 0);
   const auto* f = fresh.cellAt(2.05, 0.05);
   ASSERT_NE(f, nullptr);
-  EXPECT_FLOAT_EQ(f->bottom, 0.2f);
-  EXPECT_FLOAT_EQ(f->top, 0.5f);
+  EXPECT_FLOAT_EQ(f->top, 0.7f);
 }
 
 TEST(LongTermMemoryReinforcement, ThePoseTranslatesAndRotatesObstaclesIntoTheMap)

@@ -46,9 +46,8 @@ public:
     double first_seen = 0.0;         ///< [s]
     double last_seen = 0.0;          ///< [s]
     double last_change = 0.0;        ///< last reinforcement, penalty or decay step [s] (rule (c) counts from it)
-    /// Lowest / highest obstacle point seen in the cell [m above the floor]; NaN: unknown (a cell loaded from
-    /// the database or marked by observe() without heights). Not persisted.
-    float bottom = std::numeric_limits<float>::quiet_NaN();
+    /// The highest obstacle point seen in the cell [m above the floor]; NaN: unknown (a cell loaded from the
+    /// database or marked by observe() without it). Not persisted.
     float top = std::numeric_limits<float>::quiet_NaN();
   };
   struct UpdateStats
@@ -70,17 +69,16 @@ public:
 
   /// One frame: `scan` was taken with base_link at `map_from_base` at `stamp` [s]. Applies rule (c) to
   /// every cell, then (a) to the cells seen and (b) to remembered cells in view and nearer than the free
-  /// range. In view: beyond the bin's free_from (the floor seen there); for a cell of known heights also
-  /// where a ray to the bin's floor (floor_near … floor_far) crosses it between its bottom and top — nearer
-  /// than free_from, where the camera does not see the floor but would see what stood there (a phantom or
-  /// a moved object 1.2 m ahead of a camera 1.1 m up). A non-finite pose or stamp is ignored.
+  /// range. In view: beyond the bin's free_from (the floor seen there); for a cell of known top also where a
+  /// ray to the bin's floor (floor_near … floor_far) crosses it between min_obstacle_height and its top —
+  /// nearer than free_from, where the camera does not see the floor but would see what stood there (a
+  /// phantom, or a moved object 1.2 m ahead of a camera 1.1 m up). A non-finite pose or stamp is ignored.
   UpdateStats update(const ViewScan& scan, const Pose2D& map_from_base, double stamp);
   /// Rule (c) alone (no frame), e.g. on a timer. Returns the number of cells removed.
   int forget(double stamp);
-  /// Marks a cell seen once at `stamp` (as update() does for a cell with enough points), its obstacle points
-  /// between heights bottom and top [m] (NaN: not known; the cell keeps the widest band seen).
-  void observe(double x, double y, double stamp, float bottom = std::numeric_limits<float>::quiet_NaN(),
-               float top = std::numeric_limits<float>::quiet_NaN());
+  /// Marks a cell seen once at `stamp` (as update() does for a cell with enough points), its highest obstacle
+  /// point at `top` [m] (NaN: not known; the cell keeps the highest seen).
+  void observe(double x, double y, double stamp, float top = std::numeric_limits<float>::quiet_NaN());
 
   const std::unordered_map<std::int64_t, Cell>& cells() const { return cells_; }
   const Cell* cellAt(double x, double y) const;
@@ -103,7 +101,8 @@ public:
   }
 
 private:
-  /// Whether a ray of `bin` to its floor crosses `cell` (at base_point [m, base_link]) between its bottom and top.
+  /// Whether a ray of `bin` to its floor crosses `cell` (at base_point [m, base_link]) between the scan's
+  /// min_obstacle_height and the cell's top.
   static bool inViewByHeight(const ViewScan& scan, const ViewScan::Bin& bin, const Cell& cell,
                              const Eigen::Vector2d& base_point);
   void touch(std::int64_t k) { dirty_.insert(k); }

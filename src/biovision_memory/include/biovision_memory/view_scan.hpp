@@ -46,6 +46,7 @@ struct ViewScan
   std::vector<Eigen::Vector3d> obstacle_points;  ///< base_link [m], between the obstacle heights, within range
   Eigen::Vector2d camera_position{0.0, 0.0};     ///< the left camera's floor position in base_link [m]
   double camera_height = 0.0;                    ///< the left camera above the floor [m] (0: unknown)
+  double min_obstacle_height = 0.0;              ///< [m] points lower than this were floor (ViewScanParameters)
   double max_range = 0.0;                        ///< [m]
   int valid_pixels = 0;                          ///< pixels with a usable disparity
   int invalid_pixels = 0;                        ///< NaN, ±Inf, ≤ 0 or kInvalid

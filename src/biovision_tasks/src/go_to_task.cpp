@@ -1,5 +1,6 @@
 #include "biovision_tasks/go_to_task.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -112,7 +113,19 @@ TaskState GoToTask::onConclude(const Percept& percept)
     // The follower's fixed route is the trail back: retraced once.
     if (goal_.target == Target::Home && !path_.followingRoute() && percept.pose_valid && !percept.base_fault)
     {
-      const auto route = record_->wayBack({percept.pose.x, percept.pose.y});
+      auto route = record_->wayBack({percept.pose.x, percept.pose.y});
+      // Not through what the map now holds on the trail (the new obstacle of the experiment): make demo's
+      // base, trapped beside the new crate, was sent to a trail point inside it and trapped again.
+      if (!percept.map.empty() && route.size() > 2)
+      {
+        const cv::Mat1b blocked = percept.map.inflatedObstacles(parameters_.occupied_threshold, parameters_.robot_radius);
+        route.erase(std::remove_if(route.begin(), route.end() - 1,
+                                   [&](const cv::Point2d& q) {
+                                     int r, c;
+                                     return percept.map.cellOf(q.x, q.y, r, c) && blocked(r, c);
+                                   }),
+                    route.end() - 1);
+      }
       if (route.size() >= 2)
       {
         path_.followRoute(route);

@@ -635,6 +635,43 @@ TEST(GoToTask, ReturnHomeTrappedRetracesTheTrailDrivenThenFailsWhenTrappedAgain)
       << m.finished().back().reason;
 }
 
+TEST(GoToTask, ReturnHomeRetracesTheTrailRoundWhatTheMapNowHoldsOnIt)
+{
+  // The same trail with a new crate on it at (2.0, 2.0), 0.4 m wide, now in the map: no trail point the base
+  // would have to stand in it for is handed to the base (make demo: sent into the crate, trapped again).
+  TaskParameters p;
+  p.trapped_timeout = 5;
+  TaskManager m(p);
+  double t = 0;
+  for (double y = 0; y <= 2.0; y += 0.05, t += 0.1)
+    m.step(at(t, 0, y));
+  for (double x = 0; x <= 3.0; x += 0.05, t += 0.1)
+    m.step(at(t, x, 2.0));
+  m.add(spec("return_home"));
+  cv::Mat1b cells(50, 50, uchar(0));  // 0.1 m cells from (-1, -1)
+  cells(cv::Rect(28, 28, 4, 4)).setTo(100);  // x, y in [1.8, 2.2)
+  Percept trapped = at(t, 3.0, 2.0);
+  trapped.map = OccupancyMap(cells, -1.0, -1.0, 0.1);
+  trapped.base_trapped = true;
+  MotorCommand c;
+  bool on_trail = false;
+  for (const double start = t; t < start + 10.25; t += 0.5)
+  {
+    trapped.time = t;
+    c = m.step(trapped);
+    if (t > start + 5.5)
+    {
+      ASSERT_TRUE(m.finished().empty()) << m.finished().back().reason;
+      on_trail = true;
+      const double to_crate = std::hypot(std::max(std::abs(c.goal_x - 2.0) - 0.2, 0.0),
+                                         std::max(std::abs(c.goal_y - 2.0) - 0.2, 0.0));
+      EXPECT_GT(to_crate, p.robot_radius) << "goal " << c.goal_x << ", " << c.goal_y;
+    }
+  }
+  EXPECT_TRUE(on_trail);
+  EXPECT_LT(c.goal_x, 3.0);
+}
+
 TEST(MissionRecord, TheTrailIsSpacedBoundedAndItsWayBackCutsLoops)
 {
   MissionRecord r;

@@ -21,8 +21,8 @@ struct TaskParameters
   /// planned (its swept corridor is robot_radius + 0.1; with 0.05 it stopped "blocked" beside a crate for 80 s
   /// in make demo). mission_eval 101-1300 completed: 0.05 1153, 0.10 1157, 0.12 1162.
   double squeeze_margin = 0.10;
-  int occupied_threshold = 40;   ///< [0..100] LTM strength that blocks planning: 40 = P_R/M_R·100 = one
-                                 ///< sighting's initial strength (memory's README); phantoms fade below it
+  int occupied_threshold = 40;   ///< [0..100] LTM strength (100·strength/M_R) that blocks planning: 40 = 80 of
+                                 ///< M_R 200, two sightings net (one is 20); phantoms fade below it
   double replan_period = 4.0;    ///< [s] excursions replan over the LTM this often (it keeps changing)
   double explore_step = 1.5;     ///< [m] exploration picks goals this far away ...
   double explore_period = 12.0;  ///< [s] ... and a new one at least this often

@@ -279,8 +279,8 @@ BaseAttractor::Output BaseAttractor::update(const std::vector<Sector>& stm, doub
           return p_.max_linear;
         if (c < p_.safety_distance)
           return 0.0;
-        return std::min(p_.max_linear * std::clamp((c - p_.safety_distance) / (p_.slow_distance - p_.safety_distance),
-                                                   0.0, 1.0),
+        return std::min(p_.max_linear *
+                            std::clamp((c - p_.safety_distance) / (p_.slow_distance - p_.safety_distance), 0.0, 1.0),
                         std::sqrt(2 * 0.8 * p_.linear_accel * (c - p_.safety_distance)));
       };
       // An obstacle in the corridor's margin alone slows the base to margin_speed but does not stop it while it

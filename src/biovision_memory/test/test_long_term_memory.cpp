@@ -141,10 +141,10 @@ TEST(LongTermMemoryReinforcement, ACellOfKnownTopNearerThanTheFloorSeenIsExpecte
   }
   scan.bins[scan.binOf(std::atan2(-0.45, 1.05))].floor_far = 1.2f;  // floor seen only up to 1.2 m there
   LongTermMemory ltm;
-  ltm.observe(1.15, 0.05, 0, 0.45f);   // the box, seen once with its top
-  ltm.observe(1.15, -0.25, 0);         // top unknown (e.g. loaded from the database)
-  ltm.observe(1.15, 0.35, 0, 0.3f);    // a low box: its rays land at 1.32 … 1.55 m, nearer than the floor seen
-  ltm.observe(1.05, -0.45, 0, 0.8f);   // its rays land from 1.26 m on, beyond the floor seen on that bearing
+  ltm.observe(1.15, 0.05, 0, 0.45f);  // the box, seen once with its top
+  ltm.observe(1.15, -0.25, 0);        // top unknown (e.g. loaded from the database)
+  ltm.observe(1.15, 0.35, 0, 0.3f);   // a low box: its rays land at 1.32 … 1.55 m, nearer than the floor seen
+  ltm.observe(1.05, -0.45, 0, 0.8f);  // its rays land from 1.26 m on, beyond the floor seen on that bearing
   ltm.update(scan, Pose2D{}, 1);
   EXPECT_EQ(strengthAt(ltm, 1.15, 0.05), 0) << "the box would have been seen: it is gone";
   EXPECT_EQ(strengthAt(ltm, 1.15, -0.25), 40) << "top unknown: nearer than free_from, not expected";

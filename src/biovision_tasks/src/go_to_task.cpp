@@ -118,7 +118,8 @@ TaskState GoToTask::onConclude(const Percept& percept)
       // base, trapped beside the new crate, was sent to a trail point inside it and trapped again.
       if (!percept.map.empty() && route.size() > 2)
       {
-        const cv::Mat1b blocked = percept.map.inflatedObstacles(parameters_.occupied_threshold, parameters_.robot_radius);
+        const cv::Mat1b blocked = percept.map.inflatedObstacles(parameters_.occupied_threshold,
+                                                                parameters_.robot_radius);
         route.erase(std::remove_if(route.begin(), route.end() - 1,
                                    [&](const cv::Point2d& q) {
                                      int r, c;

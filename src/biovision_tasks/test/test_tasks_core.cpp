@@ -648,7 +648,7 @@ TEST(GoToTask, ReturnHomeRetracesTheTrailRoundWhatTheMapNowHoldsOnIt)
   for (double x = 0; x <= 3.0; x += 0.05, t += 0.1)
     m.step(at(t, x, 2.0));
   m.add(spec("return_home"));
-  cv::Mat1b cells(50, 50, uchar(0));  // 0.1 m cells from (-1, -1)
+  cv::Mat1b cells(50, 50, uchar(0));         // 0.1 m cells from (-1, -1)
   cells(cv::Rect(28, 28, 4, 4)).setTo(100);  // x, y in [1.8, 2.2)
   Percept trapped = at(t, 3.0, 2.0);
   trapped.map = OccupancyMap(cells, -1.0, -1.0, 0.1);

@@ -62,15 +62,15 @@ public:
 
   struct Output
   {
-    double linear = 0.0;           ///< commanded forward speed [m/s], in [0, max_linear]
-    double angular = 0.0;          ///< commanded turn rate [rad/s, + = left], |.| <= max_angular
-    double heading_rate = 0.0;     ///< the dynamics' dphi/dt before the limits [rad/s]
-    double goal_forcelet = 0.0;    ///< the goal attraction's share of heading_rate [rad/s]
-    double target_speed = 0.0;     ///< the forward speed the dynamics head for [m/s]
-    double front_clearance = 0.0;  ///< [m] clearance in the swept corridor ahead (+Inf: free)
+    double linear = 0.0;             ///< commanded forward speed [m/s], in [0, max_linear]
+    double angular = 0.0;            ///< commanded turn rate [rad/s, + = left], |.| <= max_angular
+    double heading_rate = 0.0;       ///< the dynamics' dphi/dt before the limits [rad/s]
+    double goal_forcelet = 0.0;      ///< the goal attraction's share of heading_rate [rad/s]
+    double target_speed = 0.0;       ///< the forward speed the dynamics head for [m/s]
+    double front_clearance = 0.0;    ///< [m] clearance in the swept corridor ahead (+Inf: free)
     double contact_clearance = 0.0;  ///< [m] the same in the path of the disc R alone, no margin (+Inf: free)
-    int turn_side = 0;             ///< +1 left / -1 right: where a dead-ahead obstacle is passed; 0 none
-    int invalid_sectors = 0;       ///< sectors ignored for a NaN/Inf angle or a NaN distance
+    int turn_side = 0;               ///< +1 left / -1 right: where a dead-ahead obstacle is passed; 0 none
+    int invalid_sectors = 0;         ///< sectors ignored for a NaN/Inf angle or a NaN distance
     Status status = Status::kIdle;
     std::vector<double> angle, strength, sigma, forcelet;  ///< per input sector: where the repeller sits [rad],
                                                            ///< lambda_i [1/s], sigma_i [rad], f_i [rad/s]

@@ -34,13 +34,13 @@ struct BaseAttractorParameters
   /// disc R going straight passes it); 0: such an obstacle stops the base, as one in its path does. Why: the
   /// base stopped 1 cm inside the margin beside a crate's corner, the waypoint dead ahead (make demo).
   double margin_speed = 0.05;
-  double turn_slowdown = 2.0;     ///< [rad/s] the speed falls linearly to 0 as the commanded turn rate reaches this
-  double blind_turn_rate = 0.3;   ///< [rad/s] a faster turn towards front sectors the STM does not know turns in place
-  double blind_speed = 0.05;      ///< [m/s] speed limit while a sector the swept corridor crosses within blind_distance
-      ///< is unknown to the STM: the camera glances ahead only part of the time (look_ahead)
-      ///< and an obstacle that appeared while it looked away is not in the STM (mission_eval
-      ///< tune seeds 101-130: no limit 8 collisions, 0.1: 3, 0.05: 0; docs/benchmarks.md)
-  double blind_distance = 1.0;      ///< [m] see blind_speed
+  double turn_slowdown = 2.0;    ///< [rad/s] the speed falls linearly to 0 as the commanded turn rate reaches this
+  double blind_turn_rate = 0.3;  ///< [rad/s] a faster turn towards front sectors the STM does not know turns in place
+  double blind_speed = 0.05;     ///< [m/s] speed limit while a sector the swept corridor crosses within blind_distance
+                                 ///< is unknown to the STM: the camera glances ahead only part of the time (look_ahead)
+                                 ///< and an obstacle that appeared while it looked away is not in the STM (mission_eval
+                                 ///< tune seeds 101-130: no limit 8 collisions, 0.1: 3, 0.05: 0; docs/benchmarks.md)
+  double blind_distance = 1.0;   ///< [m] see blind_speed
   double heading_stop_angle = 1.6;  ///< [rad] the speed falls linearly to 0 when the goal is this far off the heading
   /// [rad] once the goal is heading_stop_angle off, the base turns in place by the goal's attraction alone until
   /// it is within this angle. Why: repellers beside the base balanced the weak pull of a goal behind it, v = 0,

@@ -133,67 +133,67 @@ TEST(ViewScanFreeSpace, StartsWhereTheRayToTheNearestFloorPointIsLowerThanAnObst
   EXPECT_NEAR(scan.camera_height, height, 1e-9);
 }
 
+namespace
+{
+// A post of `height` [m] `x` m ahead of a camera 1.1 m up tilted 0.3 rad down, seen in 3 frames, then taken
+// away and the empty view seen 6 times: the LTM cells round it before and after, and the free_from of the
+// empty view straight ahead.
+struct ShownAndTakenAway
+{
+  int cells_before = 0, cells_after = 0;
+  float free_from = 0.0f;
+};
+ShownAndTakenAway showAndTakeAway(double x, double height)
+{
+  const auto cam = camera160();
+  const auto pose = cameraPose(0.0, 0.3, 1.1);
+  ShortTermMemory stm;
+  biovision_memory::LongTermMemory ltm;
+  double t = 0.0;
+  for (int i = 0; i < 3; ++i, t += 0.5)
+  {
+    stm.update(renderDisparity(cam, pose, {{x, 0.0, 0.1, height}}), cam, pose, Pose2D{}, t);
+    ltm.update(stm.lastScan(), Pose2D{}, t);
+  }
+  auto cellsNear = [&] {
+    int n = 0;
+    for (double cx = x - 0.2; cx <= x + 0.2; cx += 0.1)
+      for (double cy = -0.2; cy <= 0.2; cy += 0.1)
+        n += ltm.cellAt(cx, cy) != nullptr;
+    return n;
+  };
+  ShownAndTakenAway r;
+  r.cells_before = cellsNear();
+  const ViewScan empty =
+      biovision_memory::ViewScanner(stm.parameters().scan).scan(renderDisparity(cam, pose, {}), cam, pose);
+  r.free_from = empty.bins[empty.binOf(0.0)].free_from;
+  for (int i = 0; i < 6; ++i, t += 0.5)
+    ltm.update(empty, Pose2D{}, t);
+  r.cells_after = cellsNear();
+  return r;
+}
+}  // namespace
+
 // A box seen 1.5 m ahead, then taken away (mission_director shows the robot its target there): the robot
 // standing still must forget it, although its cells are nearer than any floor point the camera sees.
 TEST(ViewScanFreeSpace, AnObstacleRemovedFromTheBlindFloorIsForgottenByTheLongTermMemory)
 {
-  const auto cam = camera160();
-  const auto pose = cameraPose(0.0, 0.3, 1.1);
-  ShortTermMemory stm;
-  biovision_memory::LongTermMemory ltm;
-  const double x = 1.5;
-  double t = 0.0;
-  for (int i = 0; i < 3; ++i, t += 0.5)
-  {
-    stm.update(renderDisparity(cam, pose, {{x, 0.0, 0.1, 0.4}}), cam, pose, Pose2D{}, t);
-    ltm.update(stm.lastScan(), Pose2D{}, t);
-  }
-  auto cellsNear = [&] {
-    int n = 0;
-    for (double cx = x - 0.2; cx <= x + 0.2; cx += 0.1)
-      for (double cy = -0.2; cy <= 0.2; cy += 0.1)
-        n += ltm.cellAt(cx, cy) != nullptr;
-    return n;
-  };
-  ASSERT_GT(cellsNear(), 0) << "the box was not mapped";
-  const ViewScan empty =
-      biovision_memory::ViewScanner(stm.parameters().scan).scan(renderDisparity(cam, pose, {}), cam, pose);
-  ASSERT_GT(empty.bins[empty.binOf(0.0)].free_from, 0.0f);
-  for (int i = 0; i < 6; ++i, t += 0.5)
-    ltm.update(empty, Pose2D{}, t);
-  EXPECT_EQ(cellsNear(), 0);
+  const auto r = showAndTakeAway(1.5, 0.4);
+  ASSERT_GT(r.cells_before, 0) << "the box was not mapped";
+  ASSERT_GT(r.free_from, 0.0f);
+  EXPECT_EQ(r.cells_after, 0);
 }
 
 // The same nearer than the floor the camera sees (free_from): the post's top, which the camera saw, would be
-// in view; a ray to the floor crosses its cell between the heights it was seen at. (Before the cells kept
-// their heights, such a post — the demo's target, shown 2.2 m ahead and approached — stayed for good.)
-TEST(ViewScanFreeSpace, AnObstacleRemovedNearerThanTheFloorSeenIsForgottenByItsHeights)
+// in view; a ray to the floor crosses its cell below that top. (Before the cells kept their top, such a post
+// — the demo's target, shown 2.2 m ahead and approached — stayed for good.)
+TEST(ViewScanFreeSpace, AnObstacleRemovedNearerThanTheFloorSeenIsForgottenByItsTop)
 {
-  const auto cam = camera160();
-  const auto pose = cameraPose(0.0, 0.3, 1.1);
-  ShortTermMemory stm;
-  biovision_memory::LongTermMemory ltm;
   const double x = 1.2;  // a 0.6 m post; the camera sees the floor from 1.66 m and the post from 0.37 m up
-  double t = 0.0;
-  for (int i = 0; i < 3; ++i, t += 0.5)
-  {
-    stm.update(renderDisparity(cam, pose, {{x, 0.0, 0.1, 0.6}}), cam, pose, Pose2D{}, t);
-    ltm.update(stm.lastScan(), Pose2D{}, t);
-  }
-  auto cellsNear = [&] {
-    int n = 0;
-    for (double cx = x - 0.2; cx <= x + 0.2; cx += 0.1)
-      for (double cy = -0.2; cy <= 0.2; cy += 0.1)
-        n += ltm.cellAt(cx, cy) != nullptr;
-    return n;
-  };
-  ASSERT_GT(cellsNear(), 0) << "the post was not mapped";
-  const ViewScan empty =
-      biovision_memory::ViewScanner(stm.parameters().scan).scan(renderDisparity(cam, pose, {}), cam, pose);
-  ASSERT_GT(empty.bins[empty.binOf(0.0)].free_from, x + 0.2) << "the post must stand nearer than the floor seen";
-  for (int i = 0; i < 6; ++i, t += 0.5)
-    ltm.update(empty, Pose2D{}, t);
-  EXPECT_EQ(cellsNear(), 0);
+  const auto r = showAndTakeAway(x, 0.6);
+  ASSERT_GT(r.cells_before, 0) << "the post was not mapped";
+  ASSERT_GT(r.free_from, x + 0.2) << "the post must stand nearer than the floor seen";
+  EXPECT_EQ(r.cells_after, 0);
 }
 
 TEST(ShortTermMemorySectors, ABlindOrNanViewChangesNothing)

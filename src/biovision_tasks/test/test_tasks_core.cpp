@@ -596,19 +596,29 @@ TEST(ExplorationPlanner, CoverageMemoryStaysBoundedOverALongDrive)
   EXPECT_GT(wanderer.visits({0.2 * 299999, 0.2 * (299999 % 7)}), 0.0);
 }
 
-TEST(GoToTask, ReturnHomeTrappedRetracesTheTrailDrivenThenFailsWhenTrappedAgain)
+namespace
 {
-  // The base drove home -> (0, 2) -> (3, 2); the straight way back is blocked by something the map does not
-  // hold (mission_eval tune seeds 131, 165: a new obstacle beside the straight line home).
-  TaskParameters p;
-  p.trapped_timeout = 5;
-  TaskManager m(p);
+// The base drove home -> (0, 2) -> (3, 2) (0.05 m every 0.1 s); return_home is added. Returns the time.
+double driveTheTrailOut(TaskManager& m)
+{
   double t = 0;
   for (double y = 0; y <= 2.0; y += 0.05, t += 0.1)
     m.step(at(t, 0, y));
   for (double x = 0; x <= 3.0; x += 0.05, t += 0.1)
     m.step(at(t, x, 2.0));
   m.add(spec("return_home"));
+  return t;
+}
+}  // namespace
+
+TEST(GoToTask, ReturnHomeTrappedRetracesTheTrailDrivenThenFailsWhenTrappedAgain)
+{
+  // The straight way back is blocked by something the map does not hold (mission_eval tune seeds 131, 165:
+  // a new obstacle beside the straight line home).
+  TaskParameters p;
+  p.trapped_timeout = 5;
+  TaskManager m(p);
+  double t = driveTheTrailOut(m);
   Percept trapped = at(t, 3.0, 2.0);
   trapped.base_trapped = true;
   MotorCommand c = m.step(trapped);
@@ -642,12 +652,7 @@ TEST(GoToTask, ReturnHomeRetracesTheTrailRoundWhatTheMapNowHoldsOnIt)
   TaskParameters p;
   p.trapped_timeout = 5;
   TaskManager m(p);
-  double t = 0;
-  for (double y = 0; y <= 2.0; y += 0.05, t += 0.1)
-    m.step(at(t, 0, y));
-  for (double x = 0; x <= 3.0; x += 0.05, t += 0.1)
-    m.step(at(t, x, 2.0));
-  m.add(spec("return_home"));
+  double t = driveTheTrailOut(m);
   cv::Mat1b cells(50, 50, uchar(0));         // 0.1 m cells from (-1, -1)
   cells(cv::Rect(28, 28, 4, 4)).setTo(100);  // x, y in [1.8, 2.2)
   Percept trapped = at(t, 3.0, 2.0);

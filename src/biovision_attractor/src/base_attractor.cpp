@@ -165,7 +165,12 @@ BaseAttractor::Output BaseAttractor::update(const std::vector<Sector>& stm, doub
   out.strength.assign(stm.size(), 0.0);
   out.sigma.assign(stm.size(), 0.0);
   out.forcelet.assign(stm.size(), 0.0);
-  out.front_clearance = clearanceAhead(stm, p_.robot_radius + p_.corridor_margin, 0);
+  // Each side's clearance in the swept corridor (the dead-ahead sector counts on both): the margin's rule
+  // below needs them apart.
+  const double half_corridor = p_.robot_radius + p_.corridor_margin;
+  const double left_clearance = clearanceAhead(stm, half_corridor, 1);
+  const double right_clearance = clearanceAhead(stm, half_corridor, -1);
+  out.front_clearance = std::min(left_clearance, right_clearance);
   out.contact_clearance = clearanceAhead(stm, p_.robot_radius, 0);
 
   double target_linear = 0.0, target_angular = 0.0;
@@ -289,9 +294,8 @@ BaseAttractor::Output BaseAttractor::update(const std::vector<Sector>& stm, doub
       // 2026-12-04). Turning towards it still stops: out of view the STM holds few points of a face alongside
       // (navigation_eval tune seeds 101-300, fixed head: 15 collisions with the margin always stopping,
       // 29 when it never did).
-      const double half_corridor = p_.robot_radius + p_.corridor_margin;
-      const bool towards_margin = (target_angular > 0 && clearanceAhead(stm, half_corridor, 1) < p_.safety_distance) ||
-                                  (target_angular < 0 && clearanceAhead(stm, half_corridor, -1) < p_.safety_distance);
+      const bool towards_margin = (target_angular > 0 && left_clearance < p_.safety_distance) ||
+                                  (target_angular < 0 && right_clearance < p_.safety_distance);
       const bool margin_stops = p_.margin_speed == 0.0 || towards_margin;
       if (out.contact_clearance < p_.safety_distance || (margin_stops && out.front_clearance < p_.safety_distance))
       {

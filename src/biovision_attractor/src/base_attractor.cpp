@@ -156,6 +156,37 @@ void BaseAttractor::updateTrapClock(double goal_distance, double t)
   }
 }
 
+double BaseAttractor::turnBrakeLimit(const Output& out, double goal_bearing, bool goal_alone) const
+{
+  // The field the heading follows, at a heading psi [rad] off the present one (obstacles held where they are).
+  const auto field = [&](double psi) {
+    double f = sineAttraction(psi, goal_bearing, p_.alpha_goal);
+    if (!goal_alone)
+      for (size_t i = 0; i < out.strength.size(); ++i)
+        if (out.strength[i] > 0)
+          f += repulsion(psi, out.angle[i], 1.0, out.strength[i], 2 * out.sigma[i] * out.sigma[i]);
+    return f;
+  };
+  const double now = field(0.0);
+  if (!(std::abs(now) > 0))
+    return p_.max_angular;
+  // The first heading in the turn's direction where the field changes sign, interpolated between samples.
+  const double direction = now > 0 ? 1.0 : -1.0;
+  constexpr double kStep = 0.02;  // rad: finer than any repeller (sigma >= 10 deg)
+  double to_attractor = M_PI, previous = now;
+  for (double psi = kStep; psi <= M_PI; psi += kStep)
+  {
+    const double f = field(direction * psi);
+    if (direction * f <= 0)
+    {
+      to_attractor = psi - kStep + kStep * previous / (previous - f);
+      break;
+    }
+    previous = f;
+  }
+  return std::sqrt(2 * p_.turn_brake_share * p_.angular_accel * to_attractor);
+}
+
 BaseAttractor::Output BaseAttractor::update(const std::vector<Sector>& stm, double goal_bearing, double goal_distance,
                                             double t, double dt)
 {
@@ -243,8 +274,7 @@ BaseAttractor::Output BaseAttractor::update(const std::vector<Sector>& stm, doub
     // in place hits nothing, while repellers on both sides of a gap narrower than its swept corridor held the
     // heading along the gap for good (mission_eval in the corridor world: wedged between a wall and a plant
     // for 200 s; tune seeds 101-300 / 301-500 completed 185 / 174 -> 185 / 178 of 200).
-    if (out.front_clearance < p_.safety_distance && std::abs(goal_bearing) > M_PI / 2)
-      rate = out.goal_forcelet;
+    bool goal_alone = out.front_clearance < p_.safety_distance && std::abs(goal_bearing) > M_PI / 2;
     // A goal heading_stop_angle off (the speed is 0 there): turn in place by its attraction alone until it is
     // within turn_in_place_angle. Repellers beside the base otherwise balanced the weak pull of a goal behind
     // it and held the heading at a fixed point with v = 0 (mission_eval report seed 4: 200 s).
@@ -252,11 +282,17 @@ BaseAttractor::Output BaseAttractor::update(const std::vector<Sector>& stm, doub
       turning_in_place_ = true;
     else if (std::abs(goal_bearing) < p_.turn_in_place_angle)
       turning_in_place_ = false;
-    if (turning_in_place_)
+    goal_alone = goal_alone || turning_in_place_;
+    if (goal_alone)
       rate = out.goal_forcelet;
     out.heading_rate = rate;
     {
       target_angular = std::clamp(rate, -p_.max_angular, p_.max_angular);
+      if (p_.turn_brake_share > 0)
+      {
+        const double brake = turnBrakeLimit(out, goal_bearing, goal_alone);
+        target_angular = std::clamp(target_angular, -brake, brake);
+      }
       // Forward speed: the least of the limits below.
       const double heading_share = std::clamp(1.0 - std::abs(goal_bearing) / p_.heading_stop_angle, 0.0, 1.0);
       double v = p_.max_linear * heading_share;

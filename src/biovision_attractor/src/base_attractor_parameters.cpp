@@ -25,6 +25,7 @@ const std::vector<BaseAttractorParameters::Named>& BaseAttractorParameters::name
       {"slow_distance", &P::slow_distance, 0.01, 5.0},
       {"corridor_margin", &P::corridor_margin, 0.0, 1.0},
       {"margin_speed", &P::margin_speed, 0.0, 1.2},
+      {"turn_brake_share", &P::turn_brake_share, 0.0, 1.0},
       {"turn_slowdown", &P::turn_slowdown, 0.1, 20.0},
       {"blind_turn_rate", &P::blind_turn_rate, 0.0, 20.0},
       {"blind_speed", &P::blind_speed, 0.0, 1.2},

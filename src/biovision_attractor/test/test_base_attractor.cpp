@@ -57,16 +57,24 @@ biovision_sim::World::Object box(const std::string& label, double x, double y, d
   return o;
 }
 
-NavigationTrialResult drive(const biovision_sim::World& world, double goal_x, double goal_y, double timeout = 60)
+// A fixed-head trial on ground-truth ranges from (start_x, start_y, start_yaw) [m, m, rad] to the goal.
+NavigationTrialResult driveFrom(const biovision_sim::World& world, double start_x, double start_y, double start_yaw,
+                                double goal_x, double goal_y, const BaseAttractorParameters& parameters,
+                                double timeout = 60)
 {
   NavigationTrialOptions options;
   options.active_head = false;
   options.timeout = timeout;
   const biovision_sim::FloorPlan plan(world);
-  return runNavigationTrial(world, 0, 0, 0, goal_x, goal_y, BaseAttractorParameters(), HeadAttractorParameters(),
+  return runNavigationTrial(world, start_x, start_y, start_yaw, goal_x, goal_y, parameters, HeadAttractorParameters(),
                             options, [&plan] {
                               return std::make_unique<GroundTruthRangeStm>(plan, GroundTruthRangeStm::Options());
                             });
+}
+
+NavigationTrialResult drive(const biovision_sim::World& world, double goal_x, double goal_y, double timeout = 60)
+{
+  return driveFrom(world, 0, 0, 0, goal_x, goal_y, BaseAttractorParameters(), timeout);
 }
 }  // namespace
 
@@ -297,6 +305,24 @@ TEST(BaseAttractorClosedLoop, TurnsRoundToAGoalBehindBetweenTwoBoxesBesideIt)
   EXPECT_TRUE(r.reached);
   EXPECT_EQ(r.collisions, 0);
   EXPECT_LT(r.time, 20.0) << "without the turn in place: 31.8 s, after the trap detection's escape";
+}
+
+TEST(BaseAttractorClosedLoop, TurnsIntoAOneMetreGapBetweenACrateAndAWallWithoutSwingingAboutIt)
+{
+  // make demo's return_home (2026-12-04): a new crate 1 m from the corridor's wall, the base beside the gap
+  // facing the wall. Without braking into the attractor the slewed turn rate overshot the steep field of the
+  // two repellers and the heading swung +-50 deg about the gap.
+  biovision_sim::World world;
+  world.addObject(box("wall", 1.5, 1.25, 4.0, 0.1));
+  world.addObject(box("crate", 1.19, -0.01, 0.45, 0.45));
+  BaseAttractorParameters braking;
+  const NavigationTrialResult r = driveFrom(world, 1.75, 0.67, 125 * kDeg, -0.5, 0.65, braking, 30);
+  EXPECT_TRUE(r.reached);
+  EXPECT_EQ(r.collisions, 0);
+  BaseAttractorParameters thesis = braking;
+  thesis.turn_brake_share = 0.0;
+  const NavigationTrialResult swinging = driveFrom(world, 1.75, 0.67, 125 * kDeg, -0.5, 0.65, thesis, 30);
+  EXPECT_LT(r.time, swinging.time) << "braking: " << r.time << " s, without: " << swinging.time << " s";
 }
 
 TEST(BaseAttractorClosedLoop, EveryAllowedTurnInPlaceAngleEndsTheTurnAndReachesAGoalBehind)

@@ -101,6 +101,10 @@ private:
   double clearanceAhead(const std::vector<Sector>& stm, double half_width, int side) const;
   int freerSide(const std::vector<Sector>& stm, double goal_bearing) const;
   bool blindAhead(const std::vector<Sector>& stm) const;
+  /// The turn rate [rad/s] from which angular_accel * turn_brake_share stops the heading at the attractor it
+  /// turns into: the nearest heading in the turn's direction where the field (goal and out's repellers, or the
+  /// goal alone) changes sign; pi away when none.
+  double turnBrakeLimit(const Output& out, double goal_bearing, bool goal_alone) const;
   void updateTrapClock(double goal_distance, double t);
 
   BaseAttractorParameters p_;

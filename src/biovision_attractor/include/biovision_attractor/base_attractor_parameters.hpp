@@ -27,6 +27,12 @@ struct BaseAttractorParameters
   double max_angular = 1.7453;    ///< [rad/s] turn-rate limit: 100 deg/s (p2os max_yawspeed)
   double linear_accel = 0.3;      ///< [m/s^2] Pioneer 3DX default 300 mm/s^2, both ways
   double angular_accel = 1.7453;  ///< [rad/s^2] 100 deg/s^2 (Pioneer 3DX default), both ways
+  /// Share of angular_accel the turn may need to stop at the heading where dphi/dt next changes sign (the
+  /// attractor it turns into): |turn rate| <= sqrt(2 share angular_accel distance). 0: off (the thesis' dynamics,
+  /// which know no acceleration limit). Why: between a new crate and a wall 1 m apart the repellers' steep
+  /// field and the slewed turn rate made a limit cycle, the heading swinging +-50 deg about the gap for 20 s
+  /// until return_home failed (make demo, 2026-12-04, two runs of eight).
+  double turn_brake_share = 0.8;
   double safety_distance = 0.15;  ///< [m] clearance ahead at which the robot stops (and only turns)
   double slow_distance = 1.0;     ///< [m] clearance ahead below which it slows down linearly
   double corridor_margin = 0.1;   ///< [m] the swept corridor is robot_radius + this to either side

@@ -17,6 +17,7 @@ biovision_v1::GaborParameters gaborParameters(const FeatureLayout& layout)
   biovision_v1::GaborParameters p;
   p.wavelengths = {layout.wavelength};
   p.orientations = layout.orientations;
+  p.aspect_ratio = layout.aspect_ratio;
   // grid_step 1: full resolution; 2: the exact half-resolution grid (lambda / 2 samples per wavelength).
   p.min_grid_wavelength = layout.grid_step == 1 ? 0.0 : layout.wavelength / layout.grid_step;
   return p;

@@ -21,6 +21,8 @@ void FeatureLayout::validate() const
         "wavelength must be in [2, 16] px, got " + std::to_string(wavelength));
   check(orientations >= 4 && orientations <= 12,
         "orientations must be in [4, 12], got " + std::to_string(orientations));
+  check(std::isfinite(aspect_ratio) && aspect_ratio > 0.0 && aspect_ratio <= 1.0,
+        "aspect_ratio must be in (0, 1], got " + std::to_string(aspect_ratio));
   check(cell_size >= 3 && cell_size <= 16, "cell_size must be in [3, 16] px, got " + std::to_string(cell_size));
   check(block_cells >= 1 && block_cells <= 4, "block_cells must be in [1, 4], got " + std::to_string(block_cells));
   check(window_blocks >= 1 && window_blocks <= 12,

@@ -11,7 +11,7 @@ namespace biovision_hri
 namespace
 {
 const char* const kMagic = "BVHRIDET";
-constexpr uint32_t kVersion = 2;  // 2: FeatureLayout::grid_step and clip
+constexpr uint32_t kVersion = 3;  // 2: FeatureLayout::grid_step and clip; 3: aspect_ratio
 }  // namespace
 
 void LinearDetectorModel::validate() const
@@ -50,6 +50,7 @@ void LinearDetectorModel::save(const std::string& path) const
   w.put<double>(layout.epsilon);
   w.put<int32_t>(layout.grid_step);
   w.put<double>(layout.clip);
+  w.put<double>(layout.aspect_ratio);
   w.putArray(weights.data(), weights.size());
   w.put<float>(bias);
   w.putString(provenance);
@@ -70,6 +71,7 @@ LinearDetectorModel LinearDetectorModel::load(const std::string& path)
                                                                    m.layout.epsilon = r.get<double>();
                                                                    m.layout.grid_step = r.get<int32_t>();
                                                                    m.layout.clip = r.get<double>();
+                                                                   m.layout.aspect_ratio = r.get<double>();
                                                                    m.weights = r.getArray<float>(1u << 20);
                                                                    m.bias = r.get<float>();
                                                                    m.provenance = r.getString(1u << 16);

@@ -207,6 +207,7 @@ TEST(LinearDetectorModel, RoundTripsThroughItsFile)
   m.layout.grid_step = 1;  // every stored layout field, not just the defaults
   m.layout.clip = 0.2;
   m.layout.epsilon = 0.002;
+  m.layout.aspect_ratio = 0.8;
   const std::string path = tempPath("model.bin");
   m.save(path);
   const LinearDetectorModel back = LinearDetectorModel::load(path);

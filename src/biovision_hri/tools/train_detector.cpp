@@ -85,6 +85,7 @@ int main(int argc, char** argv)
       ->check(biovision_common::kNonNegative);
   app.add_option("--wavelength", layout.wavelength, "Gabor wavelength lambda [px] (thesis: 4 best)");
   app.add_option("--orientations", layout.orientations, "N_theta");
+  app.add_option("--aspect-ratio", layout.aspect_ratio, "Gabor envelope gamma (1 = isotropic)");
   app.add_option("--epsilon", layout.epsilon, "L2 block normalisation epsilon per pixel");
   app.add_option("--clip", layout.clip, "L2-Hys clipping of normalised block values (0 = plain L2, the thesis)");
   app.add_option("--grid-step", layout.grid_step, "Gabor response grid step (1 = full resolution, 2 = half)");

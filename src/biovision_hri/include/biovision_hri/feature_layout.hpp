@@ -18,6 +18,9 @@ struct FeatureLayout
   /// N_theta: orientations of the complex cells, used as oriented "gradient" channels without voting
   /// (L386; more than 8 gave no gain, L398). [4, 12]
   int orientations = 8;
+  /// gamma of the Gabor envelope: sigma along the bar = sigma across / gamma, so the kernel's long side
+  /// shrinks as gamma grows (1 = isotropic). biovision_v1's default 0.5. (0, 1]
+  double aspect_ratio = 0.5;
   /// Pooling cell side at the base scale [px] (L390). [3, 16]
   int cell_size = 6;
   /// Block side in cells (L390: 2x2). [1, 4]
@@ -52,7 +55,7 @@ struct FeatureLayout
   int windowSide(int cell) const { return windowCells() * cell; }
   bool operator==(const FeatureLayout& o) const
   {
-    return wavelength == o.wavelength && orientations == o.orientations && cell_size == o.cell_size &&
+    return wavelength == o.wavelength && orientations == o.orientations && aspect_ratio == o.aspect_ratio && cell_size == o.cell_size &&
            block_cells == o.block_cells && window_blocks == o.window_blocks && epsilon == o.epsilon &&
            grid_step == o.grid_step && clip == o.clip;
   }

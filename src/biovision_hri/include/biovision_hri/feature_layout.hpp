@@ -55,9 +55,9 @@ struct FeatureLayout
   int windowSide(int cell) const { return windowCells() * cell; }
   bool operator==(const FeatureLayout& o) const
   {
-    return wavelength == o.wavelength && orientations == o.orientations && aspect_ratio == o.aspect_ratio && cell_size == o.cell_size &&
-           block_cells == o.block_cells && window_blocks == o.window_blocks && epsilon == o.epsilon &&
-           grid_step == o.grid_step && clip == o.clip;
+    return wavelength == o.wavelength && orientations == o.orientations && aspect_ratio == o.aspect_ratio &&
+           cell_size == o.cell_size && block_cells == o.block_cells && window_blocks == o.window_blocks &&
+           epsilon == o.epsilon && grid_step == o.grid_step && clip == o.clip;
   }
 };
 }  // namespace biovision_hri

@@ -85,7 +85,8 @@ int main(int argc, char** argv)
       "--set", settings,
       "a task parameter NAME=VALUE, a base controller parameter base.NAME=VALUE, a head controller parameter "
       "head.NAME=VALUE or a short-term memory "
-      "parameter stm.obstacle_horizon_time|free_horizon_time|horizon_distance|map_completion_radius=VALUE "
+      "parameter stm.obstacle_horizon_time|free_horizon_time|horizon_distance|map_completion_radius|sector_width=VALUE "
+      "or stm.sectors=N "
       "(repeatable), "
       "e.g. home_range_cost=0.3 base.blind_speed=0.05");
   options.app().add_option("--json", json_path, "write the figures here");
@@ -141,13 +142,19 @@ int main(int argc, char** argv)
         {"stm.obstacle_horizon_time", &biovision_memory::ShortTermMemoryParameters::obstacle_horizon_time},
         {"stm.free_horizon_time", &biovision_memory::ShortTermMemoryParameters::free_horizon_time},
         {"stm.horizon_distance", &biovision_memory::ShortTermMemoryParameters::horizon_distance},
-        {"stm.map_completion_radius", &biovision_memory::ShortTermMemoryParameters::map_completion_radius}};
+        {"stm.map_completion_radius", &biovision_memory::ShortTermMemoryParameters::map_completion_radius},
+        {"stm.sector_width", &biovision_memory::ShortTermMemoryParameters::sector_width}};
     for (const auto& [stm_name, field] : stm_fields)
       if (eq != std::string::npos && name == stm_name)
       {
         trial.stm.*field = value;
         known = true;
       }
+    if (eq != std::string::npos && name == "stm.sectors")
+    {
+      trial.stm.sectors = static_cast<int>(value);
+      known = true;
+    }
     if (!known)
     {
       std::cerr << "mission_eval: --set " << s << ": not NAME=VALUE of a task parameter, base.NAME=VALUE of a base "

@@ -211,6 +211,45 @@ TEST(BaseAttractorFixedPoints, AnObstacleInTheCorridorsMarginAloneSlowsToMarginS
   }
 }
 
+TEST(BaseAttractorFixedPoints, AnObstacleOffsetBeyondTheDiscSlowsTheBaseWhereItsSectorsEdgeWouldStopIt)
+{
+  // make demo, 2026-12-04: a crate's corner 0.33 m off at -69 deg, sector -70..-50 deg. Put at the sector's
+  // near edge (-50 deg) it lies 0.253 m from the line ahead, inside the disc (R = 0.26): the base stood
+  // "blocked" beside it, the waypoint dead ahead, until the task gave up. Its offset, 0.308 m, puts it in the
+  // corridor's margin alone: the disc going straight passes it.
+  BaseAttractorParameters p;
+  p.alpha_obstacle = 0.0;  // the goal alone sets the turn
+  auto corner = freeSectors();
+  corner[at(-60)].distance = 0.33;
+  {
+    BaseAttractor a(p);
+    const auto out = settle(a, corner, 0.3);  // turning left, away from it
+    EXPECT_EQ(out.status, BaseAttractor::Status::kBlocked) << "offset unknown: the sector's edge";
+    EXPECT_EQ(out.linear, 0.0);
+  }
+  corner[at(-60)].offset = 0.33 * std::sin(69 * kDeg);
+  {
+    BaseAttractor a(p);
+    const auto out = settle(a, corner, 0.3);
+    EXPECT_EQ(out.status, BaseAttractor::Status::kDriving);
+    EXPECT_EQ(out.contact_clearance, kInf);
+    EXPECT_LT(out.front_clearance, p.safety_distance) << "still in the corridor's margin";
+    EXPECT_GT(out.linear, 0.0);
+    EXPECT_LE(out.linear, p.margin_speed + 1e-12);
+  }
+  {
+    // An offset nearer the line than the sector's edge allows (inconsistent input) changes nothing: 0.36 m
+    // at -80 deg (edge -70 deg: 0.338 m off) stays outside the disc.
+    auto outer = freeSectors();
+    outer[at(-80)].distance = 0.36;
+    outer[at(-80)].offset = 0.0;
+    BaseAttractor a(p);
+    const auto out = settle(a, outer, 0.3);
+    EXPECT_EQ(out.contact_clearance, kInf);
+    EXPECT_GT(out.linear, 0.0);
+  }
+}
+
 TEST(BaseAttractorFixedPoints, BlockedInANarrowGapWithTheGoalBehindTurnsRoundToIt)
 {
   // Wedged in a gap narrower than the swept corridor (a wall on one side, a plant on the other, 0.14 and

@@ -176,7 +176,11 @@ std::vector<ShortTermMemory::Sector> ShortTermMemory::sectors() const
                               1.0);
     s.obstacle = c.obstacle;
     if (c.obstacle)
+    {
       s.distance = c.point.norm();
+      // One point per sector stands for a face that may reach the sector's edge nearest the heading.
+      s.offset = s.distance * std::sin(std::max(0.0, std::abs(s.centre) - parameters_.sector_width / 2));
+    }
   }
   return out;
 }
@@ -206,13 +210,20 @@ std::vector<ShortTermMemory::Sector> ShortTermMemory::sectors(const LongTermMemo
       const double d = std::hypot(dx, dy);
       if (d > radius)
         continue;
-      const int i = sectorOf(std::atan2(-s * dx + c * dy, c * dx + s * dy));
+      const double ahead = c * dx + s * dy, left = -s * dx + c * dy;  // in base_link
+      const int i = sectorOf(std::atan2(left, ahead));
       if (i < 0)
         continue;
       Sector& sector = out[i];
       const double distance = std::max(0.0, d - cell / 2);
+      const double offset = std::max(0.0, std::abs(left) - cell / 2);
+      // A farther cell still bounds how near the line ahead the sector's obstacles come.
+      if (sector.confidence > 0 && sector.obstacle)
+        sector.offset = std::min(sector.offset, offset);
       if (sector.confidence > 0 && sector.distance <= distance)
         continue;
+      if (!(sector.confidence > 0 && sector.obstacle))
+        sector.offset = offset;
       sector.distance = distance;
       sector.confidence = 1.0;
       sector.obstacle = true;

@@ -245,6 +245,8 @@ TEST(ShortTermMemoryMapCompletion, TheMapFillsWhatTheStmDoesNotKnowWithinTheRadi
   EXPECT_EQ(plain[7].confidence, 0.0);
   EXPECT_TRUE(completed[7].obstacle);
   EXPECT_NEAR(completed[7].distance, side - cell / 2, 1e-9);
+  EXPECT_NEAR(completed[7].offset, 2.0 - ltm.cellCentre(ltm.cellIndex(2.0 - 0.45)) - cell / 2, 1e-9)
+      << "the cell's distance from the line ahead, less half a cell";
   EXPECT_EQ(completed[7].confidence, 1.0);
   for (int i : {0, 1, 2, 3})
     EXPECT_EQ(completed[i].confidence, 0.0) << "sector " << i << ": nothing within 0.6 m on the right";
@@ -264,6 +266,28 @@ TEST(ShortTermMemoryMapCompletion, TheMapFillsWhatTheStmDoesNotKnowWithinTheRadi
   EXPECT_EQ(stm.sectors(ltm, base)[7].confidence, 0.0);
   parameters.map_completion_radius = -1.0;
   EXPECT_THROW(stm.setParameters(parameters), std::invalid_argument);
+}
+
+TEST(ShortTermMemoryMapCompletion, AFartherCellNearerTheLineAheadBoundsTheSectorsOffset)
+{
+  // The STM's point 0.22 m out at 45 deg, taken to reach its sector's near edge (+30 deg: 0.11 m off the line
+  // ahead); a map cell farther out in the same sector (+30..+50 deg) but nearer the line (0.1 m): the distance
+  // stays the STM's, the offset is the cell's.
+  ShortTermMemory stm;
+  stm.update(scanWithObstacle({0.155, 0.155}), Pose2D{0, 0, 0}, 0.0);
+  biovision_memory::LongTermMemory ltm;
+  ltm.observe(0.25, 0.15, 0.0);
+  const double cell = ltm.parameters().cell_size;
+  const double ahead = ltm.cellCentre(ltm.cellIndex(0.25)), left = ltm.cellCentre(ltm.cellIndex(0.15));
+  ASSERT_EQ(stm.sectorOf(std::atan2(left, ahead)), 6);
+  ASSERT_GT(std::hypot(ahead, left) - cell / 2, std::hypot(0.155, 0.155));
+  ASSERT_LT(std::hypot(ahead, left), stm.parameters().map_completion_radius);
+  const auto s = stm.sectors(ltm, Pose2D{0, 0, 0});
+  EXPECT_NEAR(s[6].distance, std::hypot(0.155, 0.155), 1e-9);
+  const double point_offset = std::hypot(0.155, 0.155) * std::sin(30 * kDeg);
+  ASSERT_LT(left - cell / 2, point_offset);
+  EXPECT_NEAR(s[6].offset, left - cell / 2, 1e-9);
+  EXPECT_NEAR(stm.sectors()[6].offset, point_offset, 1e-9) << "without the map: the STM's point";
 }
 
 // Odometry: the remembered obstacle is rotated and translated with the base, not re-indexed.
@@ -300,6 +324,7 @@ TEST(ShortTermMemoryOdometry, TranslationChangesDistanceAndBearing)
   EXPECT_FALSE(s[5].obstacle);
   ASSERT_TRUE(s[6].obstacle);
   EXPECT_NEAR(s[6].distance, std::hypot(0.5, 0.5), 1e-9);
+  EXPECT_NEAR(s[6].offset, std::hypot(0.5, 0.5) * std::sin(30 * kDeg), 1e-9) << "at its sector's near edge";
   EXPECT_NEAR(s[6].confidence, 1.0 - 1.5 / 2.0, 1e-9);  // travelled 1.5 of the 2 m horizon
 }
 

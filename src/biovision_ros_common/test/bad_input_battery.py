@@ -555,10 +555,13 @@ class BaseController(BadInputBattery):
             self.drives("good input after " + what)
         nan_odom = self.odom()
         nan_odom.pose.pose.position.x = NAN
+        short_offsets = self.stm()
+        short_offsets.obstacle_offset = [0.5]
         cases = {"odom x NaN": ("odom", nan_odom),
                  "an STM angle NaN": ("stm", self.stm(angles=[NAN] * 9)),
                  "an STM angle 1e30": ("stm", self.stm(angles=[1e30] * 9)),
-                 "an STM with mismatched arrays": ("stm", self.stm(distances=[1.0, 2.0]))}
+                 "an STM with mismatched arrays": ("stm", self.stm(distances=[1.0, 2.0])),
+                 "an STM with mismatched obstacle_offset": ("stm", short_offsets)}
         for what, (kind, msg) in cases.items():
             n = self.cmds.count()
 

@@ -217,7 +217,7 @@ MissionTrialResult runMissionTrial(unsigned seed, const TaskParameters& tasks,
       // The base: the task's goal, turn or stop.
       std::vector<BaseAttractor::Sector> sectors;
       for (const auto& s : stm.sectors(ltm, pose))
-        sectors.push_back({s.centre, s.distance, s.confidence, stm.parameters().sector_width});
+        sectors.push_back({s.centre, s.distance, s.confidence, stm.parameters().sector_width, s.offset});
       if (command.base == MotorCommand::Base::Stop)
       {
         base_controller.stop();

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <limits>
 #include <vector>
 
 #include "biovision_attractor/base_attractor_parameters.hpp"
@@ -58,6 +59,10 @@ public:
     double distance = 0.0;    ///< nearest obstacle [m]; +Inf = free; NaN = unknown (ignored, counted invalid)
     double confidence = 1.0;  ///< [0, 1]; NaN counts as 0
     double width = BaseAttractorParameters::kSectorWidth;  ///< angular width [rad] (EgoMap section_width)
+    /// The least distance [m] of the sector's obstacle points from the line ahead (EgoMap obstacle_offset);
+    /// NaN or negative = not known: the obstacle is assumed at the sector's edge nearest the heading, a bound
+    /// that is up to a whole width pessimistic.
+    double offset = std::numeric_limits<double>::quiet_NaN();
   };
 
   struct Output
@@ -96,9 +101,11 @@ public:
   static const char* name(Status status);
 
 private:
-  /// The clearance [m] (distance less R) of the nearest obstacle whose sector reaches within half_width of the
-  /// line ahead (+Inf: none); side +1 / -1: only the sectors left / right of it (and dead ahead), 0: all.
-  double clearanceAhead(const std::vector<Sector>& stm, double half_width, int side) const;
+  /// The clearance [m] (distance less R) of the nearest obstacle whose sector holds a point within half_width
+  /// of the line ahead (+Inf: none); side +1 / -1: only the sectors left / right of it (and dead ahead), 0: all.
+  /// use_offset: a sector's points lie Sector::offset off the line where known (never nearer than its edge
+  /// puts them); false: at its edge.
+  double clearanceAhead(const std::vector<Sector>& stm, double half_width, int side, bool use_offset) const;
   int freerSide(const std::vector<Sector>& stm, double goal_bearing) const;
   bool blindAhead(const std::vector<Sector>& stm) const;
   /// The turn rate [rad/s] from which angular_accel * turn_brake_share stops the heading at the attractor it

@@ -125,8 +125,9 @@ void BaseControllerNodelet::onStm(const biovision_msgs::EgoMapConstPtr& msg)
   const ros::Time now = ros::Time::now();
   std::string problem;
   const size_t n = msg->section_angles.size();
-  if (n == 0 || msg->obstacle_distance.size() != n || (!msg->confidence.empty() && msg->confidence.size() != n))
-    problem = "unequal or empty section_angles/obstacle_distance/confidence arrays";
+  if (n == 0 || msg->obstacle_distance.size() != n || (!msg->confidence.empty() && msg->confidence.size() != n) ||
+      (!msg->obstacle_offset.empty() && msg->obstacle_offset.size() != n))
+    problem = "unequal or empty section_angles/obstacle_distance/obstacle_offset/confidence arrays";
   else if (msg->header.stamp.isZero())
     problem = "an unstamped map";
   else if (msg->header.stamp > now + ros::Duration(settings_.stm_timeout))
@@ -142,6 +143,8 @@ void BaseControllerNodelet::onStm(const biovision_msgs::EgoMapConstPtr& msg)
     s.distance = msg->obstacle_distance[i];
     s.confidence = msg->confidence.empty() ? 1.0 : msg->confidence[i];
     s.width = width;
+    // Absent, NaN or negative: BaseAttractor puts the sector's obstacle at the sector's edge.
+    s.offset = msg->obstacle_offset.empty() ? std::numeric_limits<double>::quiet_NaN() : msg->obstacle_offset[i];
     if (!std::isfinite(s.angle) || std::abs(s.angle) > M_PI || std::isnan(s.distance) || std::isnan(s.confidence))
       problem = "a NaN/Inf or beyond-pi section angle or a NaN distance or confidence in sector " + std::to_string(i);
   }

@@ -35,9 +35,13 @@ public:
   {
     double centre = 0.0;                ///< bearing of the sector's centre in base_link [rad]
     double distance = ViewScan::kNone;  ///< nearest obstacle from base_link's origin [m]; +Inf: free or unknown
-    double confidence = 0.0;            ///< [0, 1]; 0 = unknown (never seen, or aged out)
-    bool obstacle = false;              ///< distance is an obstacle's
-    double age = 0.0;                   ///< time since the sector was last seen [s] (0 when unknown)
+    /// A lower bound [m] on how near the line ahead (base_link x) the sector's obstacles come: the STM's one
+    /// point is taken to reach the sector's edge nearest the heading, a completing map cell is taken as itself
+    /// (the map holds every face cell it saw). +Inf when the sector holds no obstacle.
+    double offset = ViewScan::kNone;
+    double confidence = 0.0;  ///< [0, 1]; 0 = unknown (never seen, or aged out)
+    bool obstacle = false;    ///< distance is an obstacle's
+    double age = 0.0;         ///< time since the sector was last seen [s] (0 when unknown)
   };
 
   /// Throws std::invalid_argument (ShortTermMemoryParameters::validate) on bad parameters.
@@ -71,7 +75,8 @@ public:
   /// The same, completed by the long-term map (beyond the thesis; what memory/stm publishes): every LTM cell
   /// of at least the initial strength whose centre lies within parameters().map_completion_radius [m] of the
   /// base is an obstacle of the sector holding its bearing, at its distance less half a cell, where the
-  /// sector is unknown or holds nothing nearer (confidence 1, age 0). `map_from_base`: base_link in the
+  /// sector is unknown or holds nothing nearer (confidence 1, age 0); every such cell (less half a cell)
+  /// and the STM's own point bound the sector's offset. `map_from_base`: base_link in the
   /// LTM's frame. A non-finite pose or a radius of 0 gives sectors().
   std::vector<Sector> sectors(const LongTermMemory& ltm, const Pose2D& map_from_base) const;
   /// The scan of the last update(disparity, …) (empty before one).

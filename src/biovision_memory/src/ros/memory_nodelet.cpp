@@ -456,6 +456,7 @@ void MemoryNodelet::publishStm(const ros::Time& stamp)
   {
     map.section_angles.push_back(static_cast<float>(s.centre));
     map.obstacle_distance.push_back(static_cast<float>(s.distance));
+    map.obstacle_offset.push_back(static_cast<float>(s.offset));
     map.confidence.push_back(static_cast<float>(s.confidence));
   }
   stm_pub_.publish(map);

@@ -2,6 +2,7 @@
 // refusal of a bad task, preemption), the base goal it publishes, tasks/status, tasks/cancel, diagnostics.
 #include <actionlib/client/simple_action_client.h>
 #include <biovision_msgs/ExecuteTaskAction.h>
+#include <biovision_msgs/SetHeadMode.h>
 #include <biovision_msgs/TaskStatus.h>
 #include <geometry_msgs/PoseStamped.h>
 #include <gtest/gtest.h>
@@ -85,6 +86,37 @@ TEST(TaskManagerNode, ExecutesCancelsAndRefusesTasks)
   EXPECT_EQ(client.getState(), actionlib::SimpleClientGoalState::ABORTED);
 
   ASSERT_TRUE(waitFor([&] { return diagnostics.received() > 0; }, 5));
+}
+
+// The head controller accepts head/set_mode and never answers (make demo, 2026-12-05: the task manager
+// waited on that call for good, under its lock: no status, no goal, no cancel). The tasks go on: status
+// every cycle, the cancel service answers, diagnostics name the call given up on.
+TEST(TaskManagerNode, KeepsCyclingWhileTheHeadControllerNeverAnswers)
+{
+  ros::NodeHandle nh;
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  biovision_ros_common::HangingServiceServer<biovision_msgs::SetHeadMode> head("head/set_mode");
+  TopicProbe<biovision_msgs::TaskStatus> status(nh, "tasks/status");
+  DiagnosticsWatch diagnostics(nh, "Task manager");
+  Client client(nh, "tasks/execute", false);
+  ASSERT_TRUE(client.waitForServer(ros::Duration(30)));
+
+  client.sendGoal(goal("look_around", {"duration=100"}));  // asks the head to explore
+  ASSERT_TRUE(waitFor([&] { return head.entered() >= 1; }, 10));
+  const size_t before = status.count();
+  // 5 Hz cycles: 10 statuses in 2 s while the call hangs (none at all before the fix).
+  ASSERT_TRUE(status.waitForCount(before + 10, 10)) << status.count() - before << " statuses";
+  EXPECT_EQ(status.last()->macro_task, "look_around");
+  ASSERT_TRUE(
+      waitFor([&] { return diagnostics.lastValue("head/set_mode").find("no answer") != std::string::npos; }, 10))
+      << diagnostics.lastValue("head/set_mode");
+  EXPECT_EQ(diagnostics.lastValue("head/set_mode").rfind("explore: ", 0), 0u) << diagnostics.lastValue("head/set_mode");
+  std_srvs::Trigger cancel;
+  ASSERT_TRUE(ros::service::call("tasks/cancel", cancel));
+  EXPECT_EQ(cancel.response.message, "cancelled");
+  ASSERT_TRUE(client.waitForResult(ros::Duration(10)));
+  head.release();
 }
 
 int main(int argc, char** argv)

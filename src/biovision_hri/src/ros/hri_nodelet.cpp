@@ -126,7 +126,9 @@ void HriNodelet::onInitNodelet()
   tilt_pub_ = nh.advertise<std_msgs::Float64>(tilt_joint_ + "/command", 5);
   greet_srv_ = nh.advertiseService("hri/greet", &HriNodelet::greet, this);
   stop_srv_ = nh.advertiseService("hri/stop_greet", &HriNodelet::stopGreet, this);
-  head_mode_client_ = nh.serviceClient<biovision_msgs::SetHeadMode>("head/set_mode");
+  // Off the callbacks' threads: a head controller that never answers must not stall detection.
+  head_mode_client_ = std::make_unique<biovision_ros_common::AsyncServiceClient<biovision_msgs::SetHeadMode>>(
+      nh, "head/set_mode", 2.0);
 }
 
 void HriNodelet::subscribe()
@@ -222,16 +224,36 @@ bool HriNodelet::stopGreet(std_srvs::Trigger::Request&, std_srvs::Trigger::Respo
 
 void HriNodelet::setHeadMode(const std::string& mode)
 {
-  biovision_msgs::SetHeadMode srv;
-  srv.request.mode = mode;
-  if (!head_mode_client_.exists() || !head_mode_client_.call(srv) || !srv.response.success)
-    NODELET_WARN_THROTTLE(5.0, "hri: head/set_mode '%s' failed (no head controller?): %s", mode.c_str(),
-                          srv.response.message.c_str());
+  {
+    std::lock_guard<std::mutex> lock(head_mode_mutex_);
+    head_mode_wanted_ = mode;
+  }
+  sendHeadMode();
+}
+
+void HriNodelet::sendHeadMode()
+{
+  std::lock_guard<std::mutex> lock(head_mode_mutex_);
+  if (const auto r = head_mode_client_->take(); r && !(r->answered && r->response.success))
+    NODELET_WARN_THROTTLE(5.0, "hri: head/set_mode '%s' failed: %s", head_mode_sent_.c_str(),
+                          r->timed_out  ? "no answer"
+                          : r->answered ? r->response.message.c_str()
+                                        : "no head controller");
+  if (head_mode_wanted_.empty())
+    return;
+  biovision_msgs::SetHeadMode::Request request;
+  request.mode = head_mode_wanted_;
+  if (head_mode_client_->start(request))  // else a call is under way: the next image sends it
+  {
+    head_mode_sent_ = head_mode_wanted_;
+    head_mode_wanted_.clear();
+  }
 }
 
 void HriNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
 {
   const auto start = std::chrono::steady_clock::now();
+  sendHeadMode();
   auto faces_msg = boost::make_shared<biovision_msgs::DetectionArray>();
   auto hands_msg = boost::make_shared<biovision_msgs::DetectionArray>();
   auto gestures_msg = boost::make_shared<biovision_msgs::GestureArray>();

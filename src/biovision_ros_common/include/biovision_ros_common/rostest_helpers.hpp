@@ -5,6 +5,7 @@
 // and child processes.
 
 #include <atomic>
+#include <condition_variable>
 #include <csignal>
 #include <cstdlib>
 #include <memory>
@@ -18,6 +19,7 @@
 
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <gtest/gtest.h>
+#include <ros/callback_queue.h>
 #include <ros/ros.h>
 
 namespace biovision_ros_common
@@ -94,6 +96,15 @@ public:
     std::lock_guard<std::mutex> lock(mutex_);
     return last_message_;
   }
+  /// The value of `key` in the last matching status ("" when it had none).
+  std::string lastValue(const std::string& key) const
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto& kv : last_values_)
+      if (kv.key == key)
+        return kv.value;
+    return "";
+  }
   void clear()
   {
     received_ = 0;
@@ -111,6 +122,7 @@ private:
           max_level_ = s.level;
         std::lock_guard<std::mutex> lock(mutex_);
         last_message_ = s.message;
+        last_values_ = s.values;
       }
   }
 
@@ -119,9 +131,57 @@ private:
   std::atomic<int> max_level_{0};
   mutable std::mutex mutex_;
   std::string last_message_;
+  std::vector<diagnostic_msgs::KeyValue> last_values_;
   // Last: destroyed first, so a spinner thread's callback never writes into members already gone
   // (unsubscribing waits for a callback in progress).
   ros::Subscriber sub_;
+};
+
+/// A service server whose callback holds every call until release() (a node that accepted the call and
+/// hangs), on a callback queue and two threads of its own so that the test's spinner stays free.
+template <typename Service>
+class HangingServiceServer
+{
+public:
+  explicit HangingServiceServer(const std::string& name) : spinner_(2, &queue_)
+  {
+    ros::NodeHandle nh;
+    nh.setCallbackQueue(&queue_);
+    server_ = nh.advertiseService(name, &HangingServiceServer::serve, this);
+    spinner_.start();
+  }
+  ~HangingServiceServer()
+  {
+    release();
+    spinner_.stop();
+  }
+  HangingServiceServer(const HangingServiceServer&) = delete;
+  HangingServiceServer& operator=(const HangingServiceServer&) = delete;
+  /// Lets every held call and every later one return (with a default response).
+  void release()
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    released_ = true;
+    released_cv_.notify_all();
+  }
+  /// Calls that reached the callback.
+  int entered() const { return entered_; }
+
+private:
+  bool serve(typename Service::Request&, typename Service::Response&)
+  {
+    ++entered_;
+    std::unique_lock<std::mutex> lock(mutex_);
+    released_cv_.wait(lock, [this] { return released_; });
+    return true;
+  }
+  ros::CallbackQueue queue_;
+  ros::AsyncSpinner spinner_;
+  std::mutex mutex_;
+  std::condition_variable released_cv_;
+  bool released_ = false;
+  std::atomic<int> entered_{0};
+  ros::ServiceServer server_;  // last: shut down before what serve() uses
 };
 
 /// Keeps every message of one topic (bounded by `capacity`, oldest dropped).

@@ -1,8 +1,8 @@
 #include "biovision_tasks/ros/task_manager_nodelet.hpp"
 
 #include <cmath>
+#include <cstdio>
 
-#include <biovision_msgs/SetHeadMode.h>
 #include <geometry_msgs/PoseStamped.h>
 #include <std_msgs/Float64.h>
 #include <pluginlib/class_list_macros.hpp>
@@ -31,6 +31,13 @@ bool isTrapped(const std::string& b)
 bool isFault(const std::string& b)
 {
   return b == "watchdog" || b == "bumper" || b == "stall" || b == "fault";
+}
+
+std::string seconds(double s)
+{
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f s", s);
+  return text;
 }
 }  // namespace
 
@@ -66,8 +73,10 @@ void TaskManagerNodelet::onInit()
   seen_hold_ = pnh.param("seen_hold", 1.0);
   goal_refresh_ = pnh.param("goal_refresh", 10.0);
   const double rate = pnh.param("rate", 5.0);
-  if (!(rate > 0) || !(pose_timeout_ > 0) || !(seen_hold_ >= 0) || !(goal_refresh_ > 0))
-    throw std::invalid_argument("task_manager: ~rate, ~pose_timeout and ~goal_refresh must be > 0, ~seen_hold >= 0");
+  const double service_timeout = pnh.param("service_timeout", 2.0);
+  if (!(rate > 0) || !(pose_timeout_ > 0) || !(seen_hold_ >= 0) || !(goal_refresh_ > 0) || !(service_timeout > 0))
+    throw std::invalid_argument(
+        "task_manager: ~rate, ~pose_timeout, ~goal_refresh and ~service_timeout must be > 0, ~seen_hold >= 0");
   manager_ = std::make_unique<TaskManager>(parameters_);
   tf_listener_ = std::make_unique<tf2_ros::TransformListener>(tf_buffer_);
 
@@ -78,8 +87,10 @@ void TaskManagerNodelet::onInit()
   ltm_sub_ = nh.subscribe("memory/ltm", 1, &TaskManagerNodelet::onLtm, this);
   items_sub_ = nh.subscribe("memory/ltm_items", 1, &TaskManagerNodelet::onLtmItems, this);
   base_sub_ = nh.subscribe("attractor/base", 5, &TaskManagerNodelet::onBaseState, this);
-  head_mode_client_ = nh.serviceClient<biovision_msgs::SetHeadMode>("head/set_mode");
-  base_stop_client_ = nh.serviceClient<std_srvs::Trigger>("base/stop");
+  head_mode_client_ = std::make_unique<biovision_ros_common::AsyncServiceClient<biovision_msgs::SetHeadMode>>(
+      nh, "head/set_mode", service_timeout);
+  base_stop_client_ = std::make_unique<biovision_ros_common::AsyncServiceClient<std_srvs::Trigger>>(nh, "base/stop",
+                                                                                                    service_timeout);
   cancel_srv_ = nh.advertiseService("tasks/cancel", &TaskManagerNodelet::onCancel, this);
 
   biovision_ros_common::DiagnosticsOptions d;
@@ -315,27 +326,54 @@ Percept TaskManagerNodelet::perceive(const ros::Time& now)
   return p;
 }
 
+void TaskManagerNodelet::collectServiceAnswers()
+{
+  if (const auto r = head_mode_client_->take())
+  {
+    head_mode_answer_ = head_mode_requested_ + ": ";
+    if (r->answered && r->response.success)
+    {
+      head_mode_ = head_mode_requested_;
+      head_mode_answer_ += "accepted";
+    }
+    else
+    {
+      head_mode_answer_ += (r->timed_out  ? "no answer within " + seconds(head_mode_client_->timeout())
+                            : r->answered ? "refused: " + r->response.message
+                                          : "no head controller");
+      NODELET_WARN_THROTTLE(5.0, "task_manager: head/set_mode %s", head_mode_answer_.c_str());
+    }
+    head_mode_requested_.clear();
+  }
+  if (const auto r = base_stop_client_->take())
+  {
+    // An answer to a stop the tasks have since left behind stops nothing now.
+    stopped_ = r->answered && sent_.base == MotorCommand::Base::Stop;
+    base_stop_answer_ = r->answered    ? "answered"
+                        : r->timed_out ? "no answer within " + seconds(base_stop_client_->timeout())
+                                       : "no base controller";
+    if (!r->answered)
+      NODELET_WARN_THROTTLE(5.0, "task_manager: base/stop %s", base_stop_answer_.c_str());
+  }
+}
+
 void TaskManagerNodelet::command(const MotorCommand& c, const Percept& p, const ros::Time& now)
 {
-  if (!c.head_mode.empty() && c.head_mode != head_mode_)
+  // Services are called off this cycle and answered later (a hung server must not stop the tasks);
+  // a mode or stop that was not answered is asked for again at the next cycle.
+  collectServiceAnswers();
+  if (!c.head_mode.empty() && c.head_mode != head_mode_ && head_mode_requested_.empty())
   {
-    biovision_msgs::SetHeadMode srv;
-    srv.request.mode = c.head_mode;
-    srv.request.target = c.head_target;
-    if (head_mode_client_.call(srv) && srv.response.success)
-      head_mode_ = c.head_mode;
-    else
-      NODELET_WARN_THROTTLE(5.0, "task_manager: head/set_mode %s failed", c.head_mode.c_str());
+    biovision_msgs::SetHeadMode::Request request;
+    request.mode = c.head_mode;
+    request.target = c.head_target;
+    if (head_mode_client_->start(request))
+      head_mode_requested_ = c.head_mode;
   }
   if (c.base == MotorCommand::Base::Stop)
   {
-    if (!stopped_)
-    {
-      std_srvs::Trigger srv;
-      stopped_ = base_stop_client_.call(srv);
-      if (!stopped_)
-        NODELET_WARN_THROTTLE(5.0, "task_manager: base/stop unavailable");
-    }
+    if (!stopped_ && !base_stop_client_->busy())
+      base_stop_client_->start(std_srvs::Trigger::Request());
     sent_ = c;
     return;
   }
@@ -435,6 +473,10 @@ void TaskManagerNodelet::details(diagnostic_updater::DiagnosticStatusWrapper& s)
   s.add("home known", manager_->record().home_known);
   s.add("path length [m]", manager_->record().path_length);
   s.add("LTM cells", map_.empty() ? 0 : map_.cells().total());
+  s.add("head mode", head_mode_);
+  s.add("head/set_mode", head_mode_answer_.empty() ? "not called" : head_mode_answer_);
+  s.add("base/stop", base_stop_answer_.empty() ? "not called" : base_stop_answer_);
+  s.add("service calls left unanswered", head_mode_client_->abandoned() + base_stop_client_->abandoned());
 }
 }  // namespace biovision_tasks
 

@@ -6,6 +6,7 @@
 
 #include <biovision_hri/HriConfig.h>
 #include <biovision_msgs/SalientRegionArray.h>
+#include <biovision_msgs/SetHeadMode.h>
 #include <dynamic_reconfigure/server.h>
 #include <image_transport/image_transport.h>
 #include <ros/ros.h>
@@ -19,6 +20,7 @@
 #include "biovision_hri/greet_behaviour.hpp"
 #include "biovision_hri/ros/hri_config.hpp"
 #include "biovision_hri/sliding_window_detector.hpp"
+#include "biovision_ros_common/async_service_client.hpp"
 #include "biovision_ros_common/clock_jump_guard.hpp"
 #include "biovision_ros_common/lazy_nodelet.hpp"
 #include "biovision_ros_common/nodelet_diagnostics.hpp"
@@ -48,7 +50,10 @@ private:
   bool stopGreet(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   void reconfigure(HriConfig& config, uint32_t level);
   void details(diagnostic_updater::DiagnosticStatusWrapper& status);
+  /// Asks the head controller for `mode` (head/set_mode, off this thread); sent by sendHeadMode().
   void setHeadMode(const std::string& mode);
+  /// Reports the last head/set_mode call's outcome and sends the mode asked for since, when no call is under way.
+  void sendHeadMode();
 
   std::unique_ptr<image_transport::ImageTransport> it_;
   image_transport::Subscriber image_sub_;
@@ -56,7 +61,10 @@ private:
   std::string input_topic_;
   ros::Publisher faces_pub_, hands_pub_, gestures_pub_, action_pub_, pan_pub_, tilt_pub_;
   ros::ServiceServer greet_srv_, stop_srv_;
-  ros::ServiceClient head_mode_client_;
+  std::unique_ptr<biovision_ros_common::AsyncServiceClient<biovision_msgs::SetHeadMode>> head_mode_client_;
+  std::mutex head_mode_mutex_;    // guards the two below
+  std::string head_mode_wanted_;  ///< a mode asked for and not yet sent ("" = none)
+  std::string head_mode_sent_;    ///< the mode of the call under way or last made
   std::string pan_joint_, tilt_joint_;
   double max_input_age_ = 0.5;
 

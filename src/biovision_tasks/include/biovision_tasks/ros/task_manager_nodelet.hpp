@@ -22,6 +22,9 @@
 
 #include <boost/thread/recursive_mutex.hpp>
 
+#include <biovision_msgs/SetHeadMode.h>
+
+#include "biovision_ros_common/async_service_client.hpp"
 #include "biovision_ros_common/nodelet_diagnostics.hpp"
 #include "biovision_tasks/task_manager.hpp"
 
@@ -40,7 +43,9 @@ namespace biovision_tasks
 /// Out: `goal` (geometry_msgs/PoseStamped in map: the active visuomotor cycle's goal, sent when it moves
 /// by more than 5 cm or every ~goal_refresh s — each goal restarts the base's trap detector, so not every
 /// cycle), `goal_bearing` (std_msgs/Float64 [rad] relative to the heading: a turn), the base controller's
-/// `base/stop` service when the command is to stop, the head controller's `head/set_mode` service on a mode change,
+/// `base/stop` service when the command is to stop, the head controller's `head/set_mode` service on a mode change
+/// (both called off the task cycle, AsyncServiceClient: a call unanswered within ~service_timeout s is given up,
+/// reported in diagnostics and made again; the cycle never waits on a service),
 /// `tasks/status` (biovision_msgs/TaskStatus, every cycle), `/diagnostics`.
 /// Action `tasks/execute` (biovision_msgs/ExecuteTask): task = a task type and arguments its object and
 /// key=value pairs (TaskSpec::parseText), or task "mission" with arguments[0] a mission YAML file; the
@@ -69,6 +74,8 @@ private:
   Percept perceive(const ros::Time& now);
   void command(const MotorCommand& command, const Percept& percept, const ros::Time& now);
   void finishGoal();
+  /// The outcome of the last head/set_mode and base/stop calls, when known (under mutex_).
+  void collectServiceAnswers();
   void details(diagnostic_updater::DiagnosticStatusWrapper& status);
 
   std::mutex mutex_;  // guards everything below against the subscriber, service and action threads
@@ -84,14 +91,17 @@ private:
   std::vector<Percept::Object> remembered_;
   std::string base_behaviour_;
   ros::Time base_state_time_;
-  std::string head_mode_;  ///< the last mode set on the head controller
-  bool stopped_ = false;   ///< base/stop already called for the current stop
-  MotorCommand sent_;      ///< the last base command sent (goals are re-sent only when they change)
+  std::string head_mode_;                            ///< the last mode the head controller accepted
+  std::string head_mode_requested_;                  ///< the mode of the head/set_mode call under way
+  bool stopped_ = false;                             ///< base/stop answered for the current stop
+  std::string head_mode_answer_, base_stop_answer_;  ///< the last call's outcome, for diagnostics
+  MotorCommand sent_;  ///< the last base command sent (goals are re-sent only when they change)
   ros::Time sent_time_;
 
   ros::Publisher goal_pub_, bearing_pub_, status_pub_;
   ros::Subscriber objects_sub_, ltm_sub_, items_sub_, base_sub_;
-  ros::ServiceClient head_mode_client_, base_stop_client_;
+  std::unique_ptr<biovision_ros_common::AsyncServiceClient<biovision_msgs::SetHeadMode>> head_mode_client_;
+  std::unique_ptr<biovision_ros_common::AsyncServiceClient<std_srvs::Trigger>> base_stop_client_;
   ros::ServiceServer cancel_srv_;
   ros::Timer timer_;
   std::unique_ptr<actionlib::SimpleActionServer<biovision_msgs::ExecuteTaskAction>> action_;

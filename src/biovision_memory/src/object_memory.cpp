@@ -73,27 +73,49 @@ ObjectMemory::Sighting ObjectMemory::observe(const std::string& label, const Eig
   Object& o = it->second;
   sighting.landmark = r.fixed(o.strength);
   sighting.remembered = o.position;
+  // A running mean over the last averaging_window sightings' weight.
+  const auto average = [this](Eigen::Vector3d& mean, std::uint32_t observations, const Eigen::Vector3d& p) {
+    const double w = 1.0 / std::min<double>(observations + 1, parameters_.averaging_window);
+    mean = (1.0 - w) * mean + w * p;
+  };
   if ((position - o.position).norm() <= parameters_.match_distance)
   {
     if (!sighting.landmark)
-    {
-      const double w = 1.0 / std::min<double>(o.observations + 1, parameters_.averaging_window);
-      o.position = (1.0 - w) * o.position + w * position;
-    }
+      average(o.position, o.observations, position);
     o.strength = r.reinforce(o.strength);
     ++o.observations;
     o.last_seen = o.last_change = stamp;
+    if (o.candidate_strength > 0)  // the old place confirmed: the candidate contradicted
+    {
+      o.candidate_strength = std::max(0, r.weaken(o.candidate_strength));
+      if (o.candidate_strength == 0)
+        o.candidate_observations = 0;
+    }
     return sighting;
   }
-  // Seen elsewhere: the old place is contradicted.
+  // Seen elsewhere: the old place is contradicted, the candidate place supported.
   o.strength = r.weaken(o.strength);
   o.last_change = stamp;
-  if (o.strength <= 0)
+  if (o.candidate_strength > 0 && (position - o.candidate_position).norm() <= parameters_.match_distance)
   {
-    o.position = position;
-    o.strength = r.initial_strength;
-    o.observations = 1;
+    average(o.candidate_position, o.candidate_observations, position);
+    o.candidate_strength = r.reinforce(o.candidate_strength);
+    ++o.candidate_observations;
+  }
+  else
+  {
+    o.candidate_position = position;
+    o.candidate_strength = r.initial_strength;
+    o.candidate_observations = 1;
+  }
+  if (o.strength <= 0 || (o.candidate_observations >= kMinCandidateSightings && o.candidate_strength >= o.strength))
+  {
+    o.position = o.candidate_position;
+    o.strength = o.candidate_strength;
+    o.observations = o.candidate_observations;
     o.first_seen = o.last_seen = stamp;
+    o.candidate_strength = 0;
+    o.candidate_observations = 0;
     sighting.relocated = true;
   }
   return sighting;

@@ -263,13 +263,60 @@ TEST(ObjectMemory, SeenElsewhereWeakensThenRelocates)
   om.observe("box", {0, 0, 0}, 0);
   om.observe("box", {0, 0, 0}, 1);  // 80
   auto s = om.observe("box", {3, 0, 0}, 2);
-  EXPECT_FALSE(s.relocated);
+  EXPECT_FALSE(s.relocated);  // one sighting elsewhere: old 40, candidate 40 of 1 sighting
   EXPECT_EQ(om.find("box")->strength, 40);
   EXPECT_EQ(om.find("box")->position.x(), 0.0);
   s = om.observe("box", {3, 0, 0}, 3);
-  EXPECT_TRUE(s.relocated);
-  EXPECT_EQ(om.find("box")->strength, 40);
+  EXPECT_TRUE(s.relocated);  // old 0; the candidate's two sightings move there
+  EXPECT_EQ(om.find("box")->strength, 80);
+  EXPECT_EQ(om.find("box")->observations, 2u);
   EXPECT_EQ(om.find("box")->position.x(), 3.0);
+  EXPECT_EQ(om.find("box")->candidate_strength, 0);
+}
+
+// make demo's staging: shown at one place (3-4 sightings), hidden at another and found there (2 sightings).
+// The thesis's rule alone (old place to 0) kept the shown place; two agreeing sightings as strong as the
+// weakened old place move it, to their mean.
+TEST(ObjectMemory, TwoAgreeingSightingsElsewhereOutweighAWeakenedPlace)
+{
+  ObjectMemory om;
+  for (int i = 0; i < 4; ++i)
+    om.observe("target", {2, 0, 0}, i);                           // 160
+  EXPECT_FALSE(om.observe("target", {9, 1.8, 0}, 10).relocated);  // old 120, candidate 40
+  const auto s = om.observe("target", {9.2, 1.8, 0}, 11);         // old 80, candidate 80 of 2
+  EXPECT_TRUE(s.relocated);
+  EXPECT_NEAR(om.find("target")->position.x(), 9.1, 1e-9);
+  EXPECT_EQ(om.find("target")->strength, 80);
+}
+
+TEST(ObjectMemory, ScatteredSightingsElsewhereAndTheOldPlaceSeenAgainKeepIt)
+{
+  ObjectMemory om;
+  for (int i = 0; i < 5; ++i)
+    om.observe("cup", {0, 0, 0}, i);  // 200: a landmark
+  // Two sightings elsewhere that disagree with each other: each restarts the candidate.
+  om.observe("cup", {3, 0, 0}, 10);  // old 160
+  om.observe("cup", {0, 3, 0}, 11);  // old 120, candidate restarted at (0, 3)
+  EXPECT_EQ(om.find("cup")->position, Eigen::Vector3d(0, 0, 0));
+  EXPECT_EQ(om.find("cup")->candidate_observations, 1u);
+  // Seen at its place again: the candidate is contradicted and gone.
+  om.observe("cup", {0, 0, 0}, 12);
+  EXPECT_EQ(om.find("cup")->candidate_strength, 0);
+  EXPECT_EQ(om.find("cup")->strength, 160);
+}
+
+TEST(ObjectMemory, ALandmarkMovesAfterThreeAgreeingSightingsElsewhere)
+{
+  ObjectMemory om;
+  for (int i = 0; i < 5; ++i)
+    om.observe("cup", {0, 0, 0}, i);                    // 200: a landmark
+  const auto first = om.observe("cup", {5, 5, 0}, 10);  // 160 / 40
+  EXPECT_TRUE(first.landmark);
+  EXPECT_FALSE(first.relocated);
+  EXPECT_FALSE(om.observe("cup", {5, 5, 0}, 11).relocated);  // 120 / 80
+  EXPECT_TRUE(om.observe("cup", {5, 5, 0}, 12).relocated);   // 80 / 120
+  EXPECT_EQ(om.find("cup")->position, Eigen::Vector3d(5, 5, 0));
+  EXPECT_FALSE(om.isLandmark(*om.find("cup")));
 }
 
 TEST(ObjectMemory, ForgettingListAndRemove)

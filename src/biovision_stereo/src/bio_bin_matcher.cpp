@@ -2,7 +2,6 @@
 #include "biovision_stereo/occlusion_filling.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -14,6 +13,7 @@
 
 #include "biovision_stereo/disparity_dog.hpp"
 #include "biovision_stereo/hamming.hpp"
+#include "biovision_stereo/iterative_spatial_filter.hpp"
 #include "biovision_stereo/pixel_descriptor.hpp"
 #include "biovision_stereo/semi_global_aggregation.hpp"
 #include "biovision_v1/end_stopped_cells.hpp"
@@ -288,64 +288,10 @@ void BioBinMatcher::fuseWithCoarser(CostVolume& costs, const CostVolume& coarser
 
 void BioBinMatcher::spatialFilter(CostVolume& costs, const cv::Mat& barriers) const
 {
-  // M_F = M_f + r (w_s - M_f): over-relaxation towards the 3x3 binomial mean w_s of the costs,
-  // leaving out line/edge pixels. With binomial weights the averaging operator has a spectrum in
-  // [0, 1], so r in (0, 2) is stable (a box mean would diverge at r = 1.6).
-  const cv::Mat kernel = (cv::Mat_<float>(1, 3) << 0.25f, 0.5f, 0.25f);
-  const cv::Size size = costs.size();
-  cv::Mat weight(size, CV_32F, cv::Scalar(1.f));
-  if (parameters_.line_edge_barriers && !barriers.empty())
-    weight.setTo(0.f, barriers);
-  cv::Mat inv_norm;
-  cv::sepFilter2D(weight, inv_norm, CV_32F, kernel, kernel, cv::Point(-1, -1), 0, cv::BORDER_REPLICATE);
-  // Pixels with no open neighbour (inside a thick barrier) keep their costs: inverse norm 0 marks them.
-  for (int y = 0; y < size.height; ++y)
-  {
-    float* n = inv_norm.ptr<float>(y);
-    for (int x = 0; x < size.width; ++x)
-      n[x] = n[x] > 1e-6f ? 1.f / n[x] : 0.f;
-  }
-  const float r = static_cast<float>(parameters_.relaxation), th = static_cast<float>(parameters_.stable_cost);
-  const size_t total = size_t(size.area()) * costs.disparities();
-  std::vector<cv::Mat> frozen(costs.disparities());
-  for (cv::Mat& f : frozen)
-    f = cv::Mat::zeros(size, CV_8U);
-  for (int it = 0; it < parameters_.max_iterations; ++it)
-  {
-    std::atomic<size_t> changed{0};
-    cv::parallel_for_(cv::Range(0, costs.disparities()), [&](const cv::Range& ks) {
-      cv::Mat masked, mean;
-      for (int k = ks.start; k < ks.end; ++k)
-      {
-        cv::Mat& c = costs.slice(k);
-        cv::multiply(c, weight, masked);
-        cv::sepFilter2D(masked, mean, CV_32F, kernel, kernel, cv::Point(-1, -1), 0, cv::BORDER_REPLICATE);
-        size_t moved = 0;
-        for (int y = 0; y < size.height; ++y)
-        {
-          float* cr = c.ptr<float>(y);
-          const float* mr = mean.ptr<float>(y);
-          const float* nr = inv_norm.ptr<float>(y);
-          uchar* fr = frozen[k].ptr<uchar>(y);
-          // Branch-free so that it vectorises. Frozen costs and costs with no open neighbour keep
-          // their value; a cost below Th_D before and after the update is frozen from now on.
-          for (int x = 0; x < size.width; ++x)
-          {
-            const float before = cr[x];
-            const float after = before + r * (mr[x] * nr[x] - before);
-            const bool keep = fr[x] | (nr[x] == 0.f);
-            const float value = keep ? before : after;
-            fr[x] = keep | ((before < th) & (after < th));
-            moved += !keep & (std::abs(after - before) > 1e-3f);
-            cr[x] = value;
-          }
-        }
-        changed += moved;
-      }
-    });
-    if (changed < parameters_.changing_fraction * total)
-      break;
-  }
+  IterativeSpatialFilter filter(parameters_.relaxation, parameters_.stable_cost, parameters_.changing_fraction,
+                                parameters_.max_iterations);
+  filter.setSimd(cost_simd_);
+  filter.apply(costs, parameters_.line_edge_barriers ? barriers : cv::Mat());
 }
 
 DisparityMap BioBinMatcher::winnerTakeAll(const CostVolume& costs, cv::Size input, double sf) const

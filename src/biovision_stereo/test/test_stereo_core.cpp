@@ -17,6 +17,7 @@
 #include "biovision_stereo/disparity_dog.hpp"
 #include "biovision_common/eval/disparity_metrics.hpp"
 #include "biovision_stereo/hamming.hpp"
+#include "biovision_stereo/iterative_spatial_filter.hpp"
 #include "biovision_stereo/occlusion_filling.hpp"
 #include "biovision_common/eval/middlebury_dataset.hpp"
 #include "biovision_stereo/pixel_descriptor.hpp"
@@ -859,4 +860,48 @@ int main(int argc, char** argv)
 {
   testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();
+}
+
+// The spatial filter's rows on 32-bit masks (generic and AVX2) equal its scalar formulation bit for bit:
+// barriers (thin and a thick block with no open neighbour), frozen costs (values below Th_D), an early stop.
+TEST(IterativeSpatialFilter, RowUpdateEqualsTheScalarFilter)
+{
+  std::vector<CostSimd> simds{CostSimd::kGeneric};
+  if (bestCostSimd() == CostSimd::kAvx2)
+    simds.push_back(CostSimd::kAvx2);
+  for (const cv::Size size : {cv::Size(37, 11), cv::Size(64, 9), cv::Size(5, 4)})
+    for (const double changing_fraction : {0.0, 0.5})
+    {
+      CostVolume in(size, 13);
+      cv::RNG rng(11);
+      for (int k = 0; k < in.disparities(); ++k)
+        rng.fill(in.slice(k), cv::RNG::UNIFORM, 0, 80);  // some below Th_D = 25: frozen as they go
+      cv::Mat barriers = cv::Mat::zeros(size, CV_8U);
+      barriers.col(size.width / 2).setTo(255);
+      barriers(cv::Rect(0, 0, std::min(4, size.width), std::min(3, size.height))).setTo(255);
+      const IterativeSpatialFilter reference(1.6, 25.0, changing_fraction, 4);
+      CostVolume expected(size, in.disparities());
+      for (int k = 0; k < in.disparities(); ++k)
+        in.slice(k).copyTo(expected.slice(k));
+      reference.applyReference(expected, barriers);
+      double moved = 0;
+      for (int k = 0; k < in.disparities(); ++k)
+        moved += cv::norm(in.slice(k), expected.slice(k), cv::NORM_L1);
+      EXPECT_GT(moved, 0.0);  // the filter did something
+      for (const CostSimd simd : simds)
+      {
+        IterativeSpatialFilter filter(1.6, 25.0, changing_fraction, 4);
+        filter.setSimd(simd);
+        CostVolume v(size, in.disparities());
+        for (int k = 0; k < in.disparities(); ++k)
+          in.slice(k).copyTo(v.slice(k));
+        filter.apply(v, barriers);
+        for (int k = 0; k < in.disparities(); ++k)
+          EXPECT_EQ(cv::norm(v.slice(k), expected.slice(k), cv::NORM_INF), 0.0)
+              << size << " fraction " << changing_fraction << " slice " << k << " " << costSimdName(simd);
+      }
+    }
+  IterativeSpatialFilter filter(1.6, 25.0, 0.1, 2);
+  CostVolume v(cv::Size(8, 8), 3);
+  EXPECT_THROW(filter.apply(v, cv::Mat::zeros(4, 4, CV_8U)), std::invalid_argument);
 }

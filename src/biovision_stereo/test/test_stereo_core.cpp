@@ -856,12 +856,6 @@ TEST(BioBinMatcher, BeatsBlockMatchingOnRealCones)
   EXPECT_LT(m.avgerr, 2.5);
 }
 
-int main(int argc, char** argv)
-{
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}
-
 // The spatial filter's rows on 32-bit masks (generic and AVX2) equal its scalar formulation bit for bit:
 // barriers (thin and a thick block with no open neighbour), frozen costs (values below Th_D), an early stop.
 TEST(IterativeSpatialFilter, RowUpdateEqualsTheScalarFilter)
@@ -904,4 +898,10 @@ TEST(IterativeSpatialFilter, RowUpdateEqualsTheScalarFilter)
   IterativeSpatialFilter filter(1.6, 25.0, 0.1, 2);
   CostVolume v(cv::Size(8, 8), 3);
   EXPECT_THROW(filter.apply(v, cv::Mat::zeros(4, 4, CV_8U)), std::invalid_argument);
+}
+
+int main(int argc, char** argv)
+{
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
 }

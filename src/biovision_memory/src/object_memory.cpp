@@ -84,7 +84,10 @@ ObjectMemory::Sighting ObjectMemory::observe(const std::string& label, const Eig
       average(o.position, o.observations, position);
     o.strength = r.reinforce(o.strength);
     ++o.observations;
-    o.last_seen = o.last_change = stamp;
+    // A stamp older than the last change (time went back) never moves it back: rule (c) would then count
+    // the whole gap as forgetting periods at the next sighting.
+    o.last_seen = std::max(o.last_seen, stamp);
+    o.last_change = std::max(o.last_change, stamp);
     if (o.candidate_strength > 0)  // the old place confirmed: the candidate contradicted
     {
       o.candidate_strength = std::max(0, r.weaken(o.candidate_strength));
@@ -95,7 +98,7 @@ ObjectMemory::Sighting ObjectMemory::observe(const std::string& label, const Eig
   }
   // Seen elsewhere: the old place is contradicted, the candidate place supported.
   o.strength = r.weaken(o.strength);
-  o.last_change = stamp;
+  o.last_change = std::max(o.last_change, stamp);
   if (o.candidate_strength > 0 && (position - o.candidate_position).norm() <= parameters_.match_distance)
   {
     average(o.candidate_position, o.candidate_observations, position);

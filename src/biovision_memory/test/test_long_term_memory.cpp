@@ -319,6 +319,20 @@ TEST(ObjectMemory, ALandmarkMovesAfterThreeAgreeingSightingsElsewhere)
   EXPECT_FALSE(om.isLandmark(*om.find("cup")));
 }
 
+// Time going back (a looped bag) in one sighting must not count the whole gap as forgetting periods at the
+// next one: the breaker's sequence wiped a memory of three sightings.
+TEST(ObjectMemory, AnOlderStampNeverMovesTheLastChangeBack)
+{
+  ObjectMemory om;
+  for (int i = 0; i < 3; ++i)
+    om.observe("box", {0, 0, 0}, 1000 + i);  // 120
+  om.observe("box", {4, 0, 0}, 10);          // elsewhere, stamped in the past: 80
+  EXPECT_EQ(om.find("box")->last_change, 1002.0);
+  om.observe("box", {0, 0, 0}, 1003);  // no forgetting period has passed
+  EXPECT_EQ(om.find("box")->strength, 120);
+  EXPECT_EQ(om.find("box")->position, Eigen::Vector3d(0, 0, 0));
+}
+
 TEST(ObjectMemory, ForgettingListAndRemove)
 {
   ObjectMemory om;

@@ -8,6 +8,9 @@
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
+#include <ros/callback_queue.h>
+
+#include <atomic>
 
 #include "biovision_ros_common/rostest_helpers.hpp"
 
@@ -117,6 +120,41 @@ TEST(TaskManagerNode, KeepsCyclingWhileTheHeadControllerNeverAnswers)
   EXPECT_EQ(cancel.response.message, "cancelled");
   ASSERT_TRUE(client.waitForResult(ros::Duration(10)));
   head.release();
+}
+
+// base/stop answers 1.5 s late; a turn is sent while the first stop's call is under way, then a stop again.
+// The late answer belongs to a stop the tasks have left behind: the new stop must call base/stop again
+// (the breaker's race: the task manager took the late answer for the new stop and the base kept turning).
+TEST(TaskManagerNode, ALateStopAnswerDoesNotCountForALaterStop)
+{
+  ros::NodeHandle nh;
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  ros::CallbackQueue queue;
+  ros::NodeHandle server_nh;
+  server_nh.setCallbackQueue(&queue);
+  std::atomic<int> stops{0};
+  ros::ServiceServer server = server_nh.advertiseService<std_srvs::Trigger::Request, std_srvs::Trigger::Response>(
+      "base/stop", [&](std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+        ++stops;
+        ros::WallDuration(1.5).sleep();
+        res.success = true;
+        return true;
+      });
+  ros::AsyncSpinner server_spinner(1, &queue);
+  server_spinner.start();
+  Client client(nh, "tasks/execute", false);
+  ASSERT_TRUE(client.waitForServer(ros::Duration(30)));
+
+  client.sendGoal(goal("stop", {"duration=0.4"}));
+  ASSERT_TRUE(waitFor([&] { return stops >= 1; }, 10));
+  const int before = stops;
+  client.sendGoal(goal("turn", {"angle=1.0"}));  // a bearing goes out while base/stop is under way
+  ros::WallDuration(0.5).sleep();
+  client.sendGoal(goal("stop", {"duration=100"}));
+  EXPECT_TRUE(waitFor([&] { return stops >= before + 1; }, 8)) << "the second stop never called base/stop";
+  client.cancelGoal();
+  server_spinner.stop();
 }
 
 int main(int argc, char** argv)

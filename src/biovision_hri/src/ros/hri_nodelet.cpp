@@ -129,6 +129,8 @@ void HriNodelet::onInitNodelet()
   // Off the callbacks' threads: a head controller that never answers must not stall detection.
   head_mode_client_ = std::make_unique<biovision_ros_common::AsyncServiceClient<biovision_msgs::SetHeadMode>>(
       nh, "head/set_mode", 2.0);
+  // Sends what images did not (a mode asked for while no image comes, a retry after a failed call).
+  head_mode_timer_ = nh.createWallTimer(ros::WallDuration(0.5), [this](const ros::WallTimerEvent&) { sendHeadMode(); });
 }
 
 void HriNodelet::subscribe()
@@ -227,6 +229,7 @@ void HriNodelet::setHeadMode(const std::string& mode)
   {
     std::lock_guard<std::mutex> lock(head_mode_mutex_);
     head_mode_wanted_ = mode;
+    head_mode_retry_at_ = ros::WallTime();
   }
   sendHeadMode();
 }
@@ -234,16 +237,31 @@ void HriNodelet::setHeadMode(const std::string& mode)
 void HriNodelet::sendHeadMode()
 {
   std::lock_guard<std::mutex> lock(head_mode_mutex_);
-  if (const auto r = head_mode_client_->take(); r && !(r->answered && r->response.success))
-    NODELET_WARN_THROTTLE(5.0, "hri: head/set_mode '%s' failed: %s", head_mode_sent_.c_str(),
-                          r->timed_out  ? "no answer"
-                          : r->answered ? r->response.message.c_str()
-                                        : "no head controller");
-  if (head_mode_wanted_.empty())
+  const ros::WallTime now = ros::WallTime::now();
+  if (const auto r = head_mode_client_->take())
+  {
+    head_mode_answer_ = head_mode_sent_ + ": " +
+                        (r->answered && r->response.success ? std::string("accepted")
+                         : r->timed_out                     ? std::string("no answer")
+                         : r->answered                      ? "refused: " + r->response.message
+                                                            : std::string("no head controller"));
+    if (!(r->answered && r->response.success))
+    {
+      NODELET_WARN_THROTTLE(5.0, "hri: head/set_mode %s", head_mode_answer_.c_str());
+      // Not answered: sent again a second later unless another mode was asked for meanwhile (a refused
+      // mode would be refused again).
+      if (!r->answered && head_mode_wanted_.empty())
+      {
+        head_mode_wanted_ = head_mode_sent_;
+        head_mode_retry_at_ = now + ros::WallDuration(1.0);
+      }
+    }
+  }
+  if (head_mode_wanted_.empty() || now < head_mode_retry_at_)
     return;
   biovision_msgs::SetHeadMode::Request request;
   request.mode = head_mode_wanted_;
-  if (head_mode_client_->start(request))  // else a call is under way: the next image sends it
+  if (head_mode_client_->start(request))  // else a call is under way: the next image or tick sends it
   {
     head_mode_sent_ = head_mode_wanted_;
     head_mode_wanted_.clear();
@@ -413,6 +431,8 @@ void HriNodelet::details(diagnostic_updater::DiagnosticStatusWrapper& status)
   status.add("joint states received", have_joints_);
   status.add("last greeting result", last_reason_);
   status.add("last action", last_action_);
+  std::lock_guard<std::mutex> head_lock(head_mode_mutex_);
+  status.add("head/set_mode", head_mode_answer_.empty() ? "not called" : head_mode_answer_);
 }
 }  // namespace biovision_hri
 

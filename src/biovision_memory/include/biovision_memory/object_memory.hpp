@@ -53,7 +53,8 @@ public:
     std::uint32_t candidate_observations = 0;
   };
   /// Sightings a candidate place needs before the object can move there: one sighting elsewhere is never
-  /// enough (a false recognition), unless it weakens the old place to 0 (the thesis's rule).
+  /// enough (a false recognition), unless it weakens the old place to 0 (the thesis's rule; so scattered
+  /// false sightings that disagree with each other can still move a memory once they have worn it to 0).
   static constexpr std::uint32_t kMinCandidateSightings = 2;
   /// The result of one sighting.
   struct Sighting

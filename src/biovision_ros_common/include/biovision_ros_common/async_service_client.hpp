@@ -22,10 +22,11 @@ namespace biovision_ros_common
 /// call hung that way (the head controller's end of the socket was left without an owner) inside the
 /// task manager's step, under its lock: no task status, no goal, the mission never began.
 ///
-/// A call not answered within `timeout` (wall seconds) is given up: take() reports it as timed out and
-/// the next start() opens a new connection. The abandoned call's thread ends whenever roscpp lets go of
-/// it (when the connection drops, at shutdown at the latest); at most `max_abandoned` such threads are
-/// left waiting, after which start() refuses until one ends (bounded threads whatever the server does).
+/// A call not answered within `timeout` (wall seconds) is given up: take() reports it as timed out, its
+/// connection is dropped (each call has a persistent client of its own, so shutting that client down
+/// closes the connection and roscpp returns the call) and the next start() opens a new connection. Should
+/// roscpp still hold a given-up call, at most `max_abandoned` such threads wait; then start() refuses until
+/// one ends (bounded threads whatever the server does).
 /// Thread-safe; neither copyable nor movable (hold it by pointer).
 template <class Service>
 class AsyncServiceClient
@@ -60,8 +61,9 @@ public:
       return false;
     auto call = std::make_shared<Call>();
     call->started = ros::WallTime::now();
-    ros::ServiceClient client = nh_.serviceClient<Service>(service_);  // not persistent: a new connection
-    std::thread([call, client, request]() mutable {
+    // Persistent: its own connection, which shutdown() drops when the call is given up.
+    call->client = nh_.serviceClient<Service>(service_, true);
+    std::thread([call, client = call->client, request]() mutable {
       Service srv;
       srv.request = request;
       const bool answered = client.call(srv);
@@ -106,6 +108,7 @@ private:
   struct Call
   {
     ros::WallTime started;
+    ros::ServiceClient client;
     std::mutex m;
     bool finished = false, gave_up = false;
     Result r;
@@ -143,12 +146,19 @@ private:
   {
     if (current_ && (ros::WallTime::now() - current_->started).toSec() > timeout_)
     {
-      std::lock_guard<std::mutex> lock(current_->m);
-      if (!current_->finished && !current_->gave_up)
+      bool give_up = false;
       {
-        current_->gave_up = true;
-        current_->r.timed_out = true;
+        std::lock_guard<std::mutex> lock(current_->m);
+        if (!current_->finished && !current_->gave_up)
+        {
+          give_up = current_->gave_up = true;
+          current_->r.timed_out = true;
+        }
+      }
+      if (give_up)
+      {
         abandoned_.push_back(current_);
+        current_->client.shutdown();  // drops the connection: roscpp returns the call (as failed)
       }
     }
     abandoned_.erase(std::remove_if(abandoned_.begin(), abandoned_.end(),

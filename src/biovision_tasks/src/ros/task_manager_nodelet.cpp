@@ -328,6 +328,7 @@ Percept TaskManagerNodelet::perceive(const ros::Time& now)
 
 void TaskManagerNodelet::collectServiceAnswers()
 {
+  const ros::WallTime now = ros::WallTime::now();
   if (const auto r = head_mode_client_->take())
   {
     head_mode_answer_ = head_mode_requested_ + ": ";
@@ -335,9 +336,15 @@ void TaskManagerNodelet::collectServiceAnswers()
     {
       head_mode_ = head_mode_requested_;
       head_mode_answer_ += "accepted";
+      head_mode_failed_ = false;
     }
     else
     {
+      // Unknown now: a call given up on may still take effect in the head controller, so the wanted mode
+      // is sent again (after kServiceRetry) even when it is the one last accepted.
+      head_mode_.clear();
+      head_mode_failed_ = true;
+      head_mode_retry_at_ = now + ros::WallDuration(kServiceRetry);
       head_mode_answer_ += (r->timed_out  ? "no answer within " + seconds(head_mode_client_->timeout())
                             : r->answered ? "refused: " + r->response.message
                                           : "no head controller");
@@ -347,12 +354,18 @@ void TaskManagerNodelet::collectServiceAnswers()
   }
   if (const auto r = base_stop_client_->take())
   {
-    // An answer to a stop the tasks have since left behind stops nothing now.
-    stopped_ = r->answered && sent_.base == MotorCommand::Base::Stop;
-    base_stop_answer_ = r->answered    ? "answered"
+    const bool stopped = r->answered && r->response.success;
+    // An answer to a stop the tasks have since left behind (a goal or turn sent after the call began)
+    // stops nothing now: the next stop calls again.
+    stopped_ = stopped && !moved_since_stop_call_ && sent_.base == MotorCommand::Base::Stop;
+    base_stop_failed_ = !stopped;
+    if (!stopped)
+      base_stop_retry_at_ = now + ros::WallDuration(kServiceRetry);
+    base_stop_answer_ = stopped        ? "answered"
+                        : r->answered  ? "refused: " + r->response.message
                         : r->timed_out ? "no answer within " + seconds(base_stop_client_->timeout())
                                        : "no base controller";
-    if (!r->answered)
+    if (!stopped)
       NODELET_WARN_THROTTLE(5.0, "task_manager: base/stop %s", base_stop_answer_.c_str());
   }
 }
@@ -360,9 +373,11 @@ void TaskManagerNodelet::collectServiceAnswers()
 void TaskManagerNodelet::command(const MotorCommand& c, const Percept& p, const ros::Time& now)
 {
   // Services are called off this cycle and answered later (a hung server must not stop the tasks);
-  // a mode or stop that was not answered is asked for again at the next cycle.
+  // a mode or stop that was not answered is asked for again, at most every kServiceRetry.
   collectServiceAnswers();
-  if (!c.head_mode.empty() && c.head_mode != head_mode_ && head_mode_requested_.empty())
+  const ros::WallTime wall = ros::WallTime::now();
+  if (!c.head_mode.empty() && c.head_mode != head_mode_ && head_mode_requested_.empty() &&
+      !(head_mode_failed_ && wall < head_mode_retry_at_))
   {
     biovision_msgs::SetHeadMode::Request request;
     request.mode = c.head_mode;
@@ -372,8 +387,9 @@ void TaskManagerNodelet::command(const MotorCommand& c, const Percept& p, const 
   }
   if (c.base == MotorCommand::Base::Stop)
   {
-    if (!stopped_ && !base_stop_client_->busy())
-      base_stop_client_->start(std_srvs::Trigger::Request());
+    if (!stopped_ && !base_stop_client_->busy() && !(base_stop_failed_ && wall < base_stop_retry_at_) &&
+        base_stop_client_->start(std_srvs::Trigger::Request()))
+      moved_since_stop_call_ = false;
     sent_ = c;
     return;
   }
@@ -402,6 +418,7 @@ void TaskManagerNodelet::command(const MotorCommand& c, const Percept& p, const 
     bearing_pub_.publish(bearing);
   }
   stopped_ = false;
+  moved_since_stop_call_ = true;
   sent_ = c;
   sent_time_ = now;
 }
@@ -477,6 +494,10 @@ void TaskManagerNodelet::details(diagnostic_updater::DiagnosticStatusWrapper& s)
   s.add("head/set_mode", head_mode_answer_.empty() ? "not called" : head_mode_answer_);
   s.add("base/stop", base_stop_answer_.empty() ? "not called" : base_stop_answer_);
   s.add("service calls left unanswered", head_mode_client_->abandoned() + base_stop_client_->abandoned());
+  if (head_mode_failed_)
+    s.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN, "head/set_mode " + head_mode_answer_);
+  if (base_stop_failed_)
+    s.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN, "base/stop " + base_stop_answer_);
 }
 }  // namespace biovision_tasks
 

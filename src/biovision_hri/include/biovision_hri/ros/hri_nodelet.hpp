@@ -52,7 +52,8 @@ private:
   void details(diagnostic_updater::DiagnosticStatusWrapper& status);
   /// Asks the head controller for `mode` (head/set_mode, off this thread); sent by sendHeadMode().
   void setHeadMode(const std::string& mode);
-  /// Reports the last head/set_mode call's outcome and sends the mode asked for since, when no call is under way.
+  /// Reports the last head/set_mode call's outcome and sends the mode asked for since, when no call is under
+  /// way (from images and a 2 Hz wall timer); a mode not answered is sent again after 1 s.
   void sendHeadMode();
 
   std::unique_ptr<image_transport::ImageTransport> it_;
@@ -62,9 +63,12 @@ private:
   ros::Publisher faces_pub_, hands_pub_, gestures_pub_, action_pub_, pan_pub_, tilt_pub_;
   ros::ServiceServer greet_srv_, stop_srv_;
   std::unique_ptr<biovision_ros_common::AsyncServiceClient<biovision_msgs::SetHeadMode>> head_mode_client_;
-  std::mutex head_mode_mutex_;    // guards the two below
-  std::string head_mode_wanted_;  ///< a mode asked for and not yet sent ("" = none)
-  std::string head_mode_sent_;    ///< the mode of the call under way or last made
+  std::mutex head_mode_mutex_;        // guards the head mode fields below; never held while taking mutex_
+  std::string head_mode_wanted_;      ///< a mode asked for and not yet sent ("" = none)
+  std::string head_mode_sent_;        ///< the mode of the call under way or last made
+  std::string head_mode_answer_;      ///< the last call's outcome (diagnostics)
+  ros::WallTime head_mode_retry_at_;  ///< a mode not answered is sent again from then on
+  ros::WallTimer head_mode_timer_;
   std::string pan_joint_, tilt_joint_;
   double max_input_age_ = 0.5;
 

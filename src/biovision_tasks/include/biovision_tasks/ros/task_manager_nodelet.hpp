@@ -91,10 +91,14 @@ private:
   std::vector<Percept::Object> remembered_;
   std::string base_behaviour_;
   ros::Time base_state_time_;
-  std::string head_mode_;                            ///< the last mode the head controller accepted
-  std::string head_mode_requested_;                  ///< the mode of the head/set_mode call under way
-  bool stopped_ = false;                             ///< base/stop answered for the current stop
-  std::string head_mode_answer_, base_stop_answer_;  ///< the last call's outcome, for diagnostics
+  std::string head_mode_;                                     ///< the last mode the head controller accepted
+  std::string head_mode_requested_;                           ///< the mode of the head/set_mode call under way
+  bool stopped_ = false;                                      ///< base/stop answered for the current stop
+  std::string head_mode_answer_, base_stop_answer_;           ///< the last call's outcome, for diagnostics
+  bool head_mode_failed_ = false, base_stop_failed_ = false;  ///< the last call was refused or not answered
+  ros::WallTime head_mode_retry_at_, base_stop_retry_at_;     ///< no new call before, after a failure
+  bool moved_since_stop_call_ = false;          ///< a goal or turn was sent after the base/stop call under way began
+  static constexpr double kServiceRetry = 1.0;  ///< [wall s] between a failed service call and the next
   MotorCommand sent_;  ///< the last base command sent (goals are re-sent only when they change)
   ros::Time sent_time_;
 

@@ -171,6 +171,7 @@ BioBinMatcher::BioBinMatcher(const BioBinParameters& parameters) : parameters_(p
   {
     odd_banks_.push_back(std::make_unique<biovision_v1::SimpleCellBank>(full));
     spare_.emplace_back();
+    codes_.emplace_back();
     barrier_banks_.push_back(std::make_unique<biovision_v1::SimpleCellBank>(gabor));
   }
 }
@@ -215,8 +216,10 @@ CostVolume BioBinMatcher::levelCosts(size_t level, const cv::Mat& left, const cv
   times_.prepare += msSince(t);
   t = Clock::now();
   // (c) odd simple cells -> rolling 256-bit descriptors.
-  const PixelDescriptorImage left_codes = PixelDescriptorImage::compute(oddResponses(level, left_gray));
-  const PixelDescriptorImage right_codes = PixelDescriptorImage::compute(oddResponses(level, right_gray));
+  PixelDescriptorImage& left_codes = codes_[level][0];
+  PixelDescriptorImage& right_codes = codes_[level][1];
+  PixelDescriptorImage::compute(oddResponses(level, left_gray), left_codes);
+  PixelDescriptorImage::compute(oddResponses(level, right_gray), right_codes);
   if (barriers)
   {
     // Line/edge events of the left image, on the bank's exact decimated grid, back at level size.

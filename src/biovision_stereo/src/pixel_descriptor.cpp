@@ -59,9 +59,18 @@ ResponseRow responseRow(const std::vector<cv::Mat>& odd, int o, int y)
 
 PixelDescriptorImage PixelDescriptorImage::compute(const std::vector<cv::Mat>& odd)
 {
+  PixelDescriptorImage image;
+  compute(odd, image);
+  return image;
+}
+
+void PixelDescriptorImage::compute(const std::vector<cv::Mat>& odd, PixelDescriptorImage& image)
+{
   checkInput(odd);
   const int w = odd.front().cols, h = odd.front().rows;
-  PixelDescriptorImage image(w, h);
+  image.width_ = w;
+  image.height_ = h;
+  image.data_.resize(size_t(w) * h);  // every descriptor is written below
 #if defined(__SSE2__)
   // Comparison bytes (0 or 0xFF) of every row and orientation, stored right to left with 8 zero bytes
   // of margin each side: then the 16 comparisons x-8..x+7 of pixel x are the 16 bytes from w - x, and one
@@ -69,7 +78,8 @@ PixelDescriptorImage PixelDescriptorImage::compute(const std::vector<cv::Mat>& o
   // zero margin is bitAt()'s false outside the image. A third less time than shifting in one bit at a
   // time (perf on Middlebury); rows in parallel.
   const int row_bytes = w + 16;
-  std::vector<std::uint8_t> reversed(size_t(kOrientations) * h * row_bytes, 0);
+  std::vector<std::uint8_t>& reversed = image.comparisons_;
+  reversed.resize(size_t(kOrientations) * h * row_bytes);  // margins and out[0] are zeroed per row below
   const auto reversedRow = [&](int o, int y) { return reversed.data() + (size_t(o) * h + y) * row_bytes; };
   cv::parallel_for_(cv::Range(0, kOrientations * h), [&](const cv::Range& jobs) {
     for (int job = jobs.start; job < jobs.end; ++job)
@@ -77,7 +87,8 @@ PixelDescriptorImage PixelDescriptorImage::compute(const std::vector<cv::Mat>& o
       const int o = job / h, y = job % h;
       const ResponseRow in = responseRow(odd, o, y);
       std::uint8_t* out = reversedRow(o, y) + 8;
-      // out[0] (x = w-1) stays 0: R(w-1) > R(w-1) is false.
+      std::fill(out - 8, out + 1, 0);  // left margin; out[0] (x = w-1): R(w-1) > R(w-1) is false
+      std::fill(out + w, out + w + 8, 0);  // right margin
       for (int x = 0; x + 1 < w; ++x)
         out[w - 1 - x] = in.r[x * in.step] > in.r[(x + 1) * in.step] ? 0xFF : 0;
     }
@@ -109,6 +120,7 @@ PixelDescriptorImage PixelDescriptorImage::compute(const std::vector<cv::Mat>& o
     }
   });
 #else
+  std::fill(image.data_.begin(), image.data_.end(), PixelDescriptor{});  // the words are OR-ed below
   std::vector<std::vector<std::uint8_t> > bits(h);  // comparisons of every row, once per orientation
   for (int o = 0; o < kOrientations; ++o)
   {
@@ -146,7 +158,6 @@ PixelDescriptorImage PixelDescriptorImage::compute(const std::vector<cv::Mat>& o
     }
   }
 #endif
-  return image;
 }
 
 PixelDescriptor PixelDescriptorImage::fromScratch(const std::vector<cv::Mat>& odd, int x, int y)

@@ -127,7 +127,9 @@ void occludedScene(int width, int height, cv::Mat& left, cv::Mat& right)
 TEST(PixelDescriptor, RollingEqualsFromScratchEverywhere)
 {
   // Widths below, at and beyond the 16 comparisons of a segment, one-row images, and ties (rounded
-  // responses: R(x) == R(x+1) is a 0 bit).
+  // responses: R(x) == R(x+1) is a 0 bit). `reused` goes through every size in turn, growing and shrinking:
+  // what an earlier image left in its memory must never show.
+  PixelDescriptorImage reused;
   for (const cv::Size size :
        {cv::Size(37, 9), cv::Size(1, 1), cv::Size(2, 3), cv::Size(16, 1), cv::Size(17, 2), cv::Size(100, 4)})
     for (const bool ties : {false, true})
@@ -147,6 +149,9 @@ TEST(PixelDescriptor, RollingEqualsFromScratchEverywhere)
         pairs[i] = padded(cv::Rect(2, 1, size.width, size.height));
       }
       const PixelDescriptorImage from_pairs = PixelDescriptorImage::compute(pairs);
+      PixelDescriptorImage::compute(ties ? pairs : odd, reused);
+      ASSERT_EQ(reused.width(), size.width);
+      ASSERT_EQ(reused.height(), size.height);
       for (int y = 0; y < size.height; ++y)
         for (int x = 0; x < size.width; ++x)
         {
@@ -154,6 +159,8 @@ TEST(PixelDescriptor, RollingEqualsFromScratchEverywhere)
               << "at " << x << "," << y << " of " << size << (ties ? " with ties" : "");
           ASSERT_TRUE(from_pairs.at(x, y) == codes.at(x, y))
               << "pairs at " << x << "," << y << " of " << size << (ties ? " with ties" : "");
+          ASSERT_TRUE(reused.at(x, y) == codes.at(x, y))
+              << "reused image at " << x << "," << y << " of " << size << (ties ? " with ties" : "");
         }
     }
 }

@@ -14,6 +14,14 @@ namespace biovision_v1
 {
 namespace
 {
+// Drops m's buffer when someone else still holds a view of it, so that writing into m never changes
+// what an earlier caller was given; a buffer only m holds is kept for reuse.
+void releaseIfShared(cv::Mat& m)
+{
+  if (m.u && m.u->refcount > 1)
+    m.release();
+}
+
 // Kernel spectrum entries below this fraction of its peak are left out of the product: their
 // contribution is below the float rounding of the responses.
 constexpr double kNegligibleSpectrum = 1e-6;
@@ -214,12 +222,16 @@ std::vector<std::vector<cv::Mat>> SimpleCellBank::computeOddPairs(const cv::Mat&
   const int n_scales = static_cast<int>(current().size());
   const int n_pairs = (parameters_.orientations + 1) / 2;
   std::vector<std::vector<cv::Mat>> out(n_scales, std::vector<cv::Mat>(n_pairs));
+  pair_products_.resize(size_t(n_scales) * n_pairs);
   cv::parallel_for_(cv::Range(0, n_scales * n_pairs), [&](const cv::Range& range) {
     for (int job = range.start; job < range.end; ++job)
     {
       const int s = job / n_pairs, pair = job % n_pairs;
       const ScalePlan& p = current()[s];
-      cv::Mat product;  // one per job: the returned view keeps it
+      // One buffer per job, kept for the next call (a fresh one per call was a quarter of BioBin's page
+      // faults); the returned view shares it, so it is written again only once the caller has let go.
+      cv::Mat& product = pair_products_[job];
+      releaseIfShared(product);
       cv::mulSpectrums(image_spectra[p.spectrum_source], p.odd_pair_spectra[pair], product, 0);
       FourierTransform::inverseUnscaled(product, product);  // the pair spectra carry the 1/N
       out[s][pair] = product(cv::Rect(p.padding, p.padding, gray.cols, gray.rows));

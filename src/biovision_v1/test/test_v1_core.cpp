@@ -239,6 +239,29 @@ TEST(SimpleCellBank, ReusesCachedKernelSpectraAcrossSizesOfOneDftSize)
   EXPECT_EQ(bank.plansBuilt(), 2 + SimpleCellBank::kPlanCacheSize);
 }
 
+TEST(SimpleCellBank, OddPairBuffersAreReusedOnlyOnceTheCallerLetsGo)
+{
+  GaborParameters p;
+  p.wavelengths = {4};
+  p.min_grid_wavelength = 0.0;
+  SimpleCellBank bank(p);
+  const cv::Mat a = texture(70, 50, 5), b = texture(70, 50, 6);
+  const auto held = bank.computeOddPairs(a);
+  const cv::Mat held_copy = held[0][0].clone();
+  // The views of a are still held: b's responses go to new buffers and a's stay as they were.
+  auto from_b = bank.computeOddPairs(b);
+  EXPECT_NE(from_b[0][0].data, held[0][0].data);
+  EXPECT_EQ(cv::norm(held[0][0], held_copy, cv::NORM_INF), 0.0);
+  // Let go of b's views: the next call writes into b's buffers, with b's responses of a fresh bank.
+  const uchar* b_data = from_b[0][0].data;
+  const cv::Mat b_copy = from_b[0][0].clone();
+  from_b.clear();
+  const auto again = bank.computeOddPairs(b);
+  EXPECT_EQ(again[0][0].data, b_data);
+  EXPECT_EQ(cv::norm(again[0][0], b_copy, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(again[0][0], SimpleCellBank(p).computeOddPairs(b)[0][0], cv::NORM_INF), 0.0);
+}
+
 TEST(SimpleCellBank, UniformImageGivesNoResponse)
 {
   GaborParameters p;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -10,6 +11,7 @@
 #include "biovision_stereo/cost_simd.hpp"
 #include "biovision_stereo/cost_volume.hpp"
 #include "biovision_stereo/disparity_map.hpp"
+#include "biovision_stereo/pixel_descriptor.hpp"
 
 namespace biovision_v1
 {
@@ -84,5 +86,6 @@ private:
   std::vector<std::unique_ptr<biovision_v1::SimpleCellBank>> barrier_banks_;
   std::vector<std::uint16_t> sgm_costs_, sgm_forward_, sgm_backward_;  // reused between frames
   std::vector<CostVolume> spare_;  // each level's cost volume of the last frame, memory reused
+  std::vector<std::array<PixelDescriptorImage, 2>> codes_;  // each level's left and right descriptors, reused
 };
 }  // namespace biovision_stereo

@@ -43,7 +43,8 @@ public:
 
   /// computeOdd() without its final split: per scale one CV_32FC2 map per orientation pair, R^O of
   /// orientation 2i in channel 0 and of 2i+1 in channel 1 (an odd count's last pair has 0 in channel 1).
-  /// The maps are views into the padded inverse DFTs (not continuous): one pass over the data fewer.
+  /// The maps are views into the padded inverse DFTs (not continuous): one pass over the data fewer. The
+  /// bank reuses those buffers in its next call once every view of them is released (held views stay valid).
   std::vector<std::vector<cv::Mat>> computeOddPairs(const cv::Mat& gray);
 
   const GaborParameters& parameters() const { return parameters_; }
@@ -94,6 +95,7 @@ private:
   GaborParameters parameters_;
   std::vector<PlanSet> cache_;
   int current_ = -1;  // the cache_ entry plan() chose last
+  std::vector<cv::Mat> pair_products_;  // computeOddPairs' inverse DFTs, reused once the caller let go
   long uses_ = 0, plans_built_ = 0;
 };
 }  // namespace biovision_v1

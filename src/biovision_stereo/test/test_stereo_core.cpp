@@ -22,6 +22,7 @@
 #include "biovision_common/eval/middlebury_dataset.hpp"
 #include "biovision_stereo/pixel_descriptor.hpp"
 #include "biovision_stereo/semi_global_aggregation.hpp"
+#include "biovision_v1/fourier_transform.hpp"
 #include "biovision_common/eval/portable_float_map.hpp"
 
 using biovision_common::DisparityMetrics;
@@ -536,6 +537,13 @@ TEST(BioBinMatcher, LeftRightCheckInvalidatesTheOccludedBand)
 // path's values bit for bit (no FMA, no reassociation), so the speed-up changes no output.
 TEST(CostSimd, Avx2PathGivesTheGenericBitsForBit)
 {
+  // Whole matchers are compared bit for bit: no DFT plan may be measured (and round differently) between
+  // their runs. RAII, so a failed assertion still restores the process-wide default.
+  struct EstimatedPlansOnly
+  {
+    EstimatedPlansOnly() { biovision_v1::FourierTransform::setMeasureAfter(0); }
+    ~EstimatedPlansOnly() { biovision_v1::FourierTransform::setMeasureAfter(biovision_v1::FourierTransform::kMeasureAfter); }
+  } estimated_plans_only;
   std::vector<CostSimd> simds{CostSimd::kGeneric};
   if (bestCostSimd() == CostSimd::kAvx2)
     simds.push_back(CostSimd::kAvx2);

@@ -34,9 +34,13 @@ struct Entry
 {
   std::shared_ptr<fftwf_plan_s> plan;
   long last_use = 0;
+  int executions = 0;     // since the plan was made
+  bool measured = false;  // an FFTW_MEASURE plan (or its making is under way)
 };
 
-// FFTW's planner (making and destroying plans) is not thread-safe; fftwf_execute_dft* is.
+// FFTW's planner (making and destroying plans) is not thread-safe; fftwf_execute_dft* is. Lock order:
+// the planner's lock is never taken while the cache's is held, so a thread measuring a plan (up to
+// kMeasureTimeLimit) never stops the others from finding and executing the plans they have.
 std::mutex& plannerMutex()
 {
   static std::mutex m;
@@ -45,8 +49,10 @@ std::mutex& plannerMutex()
 
 struct Cache
 {
+  std::mutex mutex;
   std::map<Key, Entry> plans;
-  long uses = 0, made = 0;
+  long uses = 0, made = 0, measured = 0;
+  int measure_after = FourierTransform::kMeasureAfter;
 };
 
 Cache& cache()
@@ -55,18 +61,76 @@ Cache& cache()
   return c;
 }
 
+std::shared_ptr<fftwf_plan_s> makePlan(const Key& key, unsigned flags)
+{
+  std::lock_guard<std::mutex> lock(plannerMutex());
+  // Plans are made on scratch arrays with fftwf_malloc's alignment (FFTW_MEASURE overwrites them);
+  // execute() checks the caller's arrays match that alignment.
+  const size_t n = static_cast<size_t>(key.rows) * key.cols;
+  fftwf_complex* out = fftwf_alloc_complex(n);
+  void* in = key.in_place ? static_cast<void*>(out) : fftwf_malloc(n * sizeof(fftwf_complex));
+  fftwf_set_timelimit(FourierTransform::kMeasureTimeLimit);
+  fftwf_plan p = nullptr;
+  if (key.kind == Kind::kRealForward)
+  {
+    // Output rows W complex apart (the full spectrum's layout): FFTW writes columns 0..W/2 of each.
+    const int n2[2] = {key.rows, key.cols};
+    p = fftwf_plan_many_dft_r2c(2, n2, 1, static_cast<float*>(in), nullptr, 1, 0, out, n2, 1, 0, flags);
+  }
+  else
+    p = fftwf_plan_dft_2d(key.rows, key.cols, static_cast<fftwf_complex*>(in), out,
+                          key.kind == Kind::kComplexForward ? FFTW_FORWARD : FFTW_BACKWARD, flags);
+  if (!key.in_place)
+    fftwf_free(in);
+  fftwf_free(out);
+  if (!p)
+    throw std::runtime_error("FourierTransform: FFTW could not plan a " + std::to_string(key.rows) + "x" +
+                             std::to_string(key.cols) + " transform");
+  return std::shared_ptr<fftwf_plan_s>(p, [](fftwf_plan q) {
+    std::lock_guard<std::mutex> l(plannerMutex());
+    fftwf_destroy_plan(q);
+  });
+}
+
+// The plan to execute for key: a new size gets an FFTW_ESTIMATE plan at once (about 1 ms); a size
+// executed measure_after times is planned again with FFTW_MEASURE (100-300 ms once, by the thread that
+// crossed the count, while the others keep executing the estimated plan), which runs the bank's sizes
+// 1.3-3.6x faster (fftw 3.3.10 here: 480x640 complex 2.4 -> 0.67 ms, 400x480 0.80 -> 0.45 ms).
 std::shared_ptr<fftwf_plan_s> planFor(const Key& key)
 {
-  // Declared before the lock, so an evicted plan is destroyed (its deleter takes the lock) after it.
-  std::shared_ptr<fftwf_plan_s> evicted;
-  std::lock_guard<std::mutex> lock(plannerMutex());
   Cache& c = cache();
-  ++c.uses;
+  std::shared_ptr<fftwf_plan_s> evicted, replaced;  // destroyed after the locks (their deleter locks)
+  bool measure = false;
+  {
+    std::lock_guard<std::mutex> lock(c.mutex);
+    ++c.uses;
+    auto it = c.plans.find(key);
+    if (it != c.plans.end())
+    {
+      Entry& e = it->second;
+      e.last_use = c.uses;
+      ++e.executions;
+      if (e.measured || c.measure_after <= 0 || e.executions < c.measure_after)
+        return e.plan;
+      e.measured = true;  // this thread measures; the others keep the estimated plan meanwhile
+      measure = true;
+    }
+  }
+  std::shared_ptr<fftwf_plan_s> plan = makePlan(key, measure ? FFTW_MEASURE : FFTW_ESTIMATE);
+  std::lock_guard<std::mutex> lock(c.mutex);
+  ++c.made;
+  c.measured += measure ? 1 : 0;
   auto it = c.plans.find(key);
   if (it != c.plans.end())
   {
-    it->second.last_use = c.uses;
-    return it->second.plan;
+    if (!measure)
+    {
+      evicted = std::move(plan);  // another thread made this size's plan meanwhile: use theirs
+      return it->second.plan;
+    }
+    replaced = std::move(it->second.plan);
+    it->second.plan = plan;
+    return plan;
   }
   if (static_cast<int>(c.plans.size()) >= FourierTransform::kMaxPlans)
   {
@@ -77,32 +141,12 @@ std::shared_ptr<fftwf_plan_s> planFor(const Key& key)
     evicted = std::move(oldest->second.plan);  // a thread still executing it holds its own reference
     c.plans.erase(oldest);
   }
-  // Plans are made on scratch arrays with fftwf_malloc's alignment; execute() checks the caller's match.
-  const size_t n = static_cast<size_t>(key.rows) * key.cols;
-  fftwf_complex* out = fftwf_alloc_complex(n);
-  void* in = key.in_place ? static_cast<void*>(out) : fftwf_malloc(n * sizeof(fftwf_complex));
-  fftwf_plan p = nullptr;
-  if (key.kind == Kind::kRealForward)
-  {
-    // Output rows W complex apart (the full spectrum's layout): FFTW writes columns 0..W/2 of each.
-    const int n2[2] = {key.rows, key.cols};
-    p = fftwf_plan_many_dft_r2c(2, n2, 1, static_cast<float*>(in), nullptr, 1, 0, out, n2, 1, 0, FFTW_ESTIMATE);
-  }
-  else
-    p = fftwf_plan_dft_2d(key.rows, key.cols, static_cast<fftwf_complex*>(in), out,
-                          key.kind == Kind::kComplexForward ? FFTW_FORWARD : FFTW_BACKWARD, FFTW_ESTIMATE);
-  if (!key.in_place)
-    fftwf_free(in);
-  fftwf_free(out);
-  if (!p)
-    throw std::runtime_error("FourierTransform: FFTW could not plan a " + std::to_string(key.rows) + "x" +
-                             std::to_string(key.cols) + " transform");
-  ++c.made;
-  std::shared_ptr<fftwf_plan_s> plan(p, [](fftwf_plan q) {
-    std::lock_guard<std::mutex> l(plannerMutex());
-    fftwf_destroy_plan(q);
-  });
-  c.plans[key] = Entry{plan, c.uses};
+  Entry e;
+  e.plan = plan;
+  e.last_use = c.uses;
+  e.executions = 1;
+  e.measured = measure;
+  c.plans[key] = e;
   return plan;
 }
 
@@ -172,7 +216,19 @@ std::string FourierTransform::backend()
 
 long FourierTransform::plansMade()
 {
-  std::lock_guard<std::mutex> lock(plannerMutex());
+  std::lock_guard<std::mutex> lock(cache().mutex);
   return cache().made;
+}
+
+long FourierTransform::plansMeasured()
+{
+  std::lock_guard<std::mutex> lock(cache().mutex);
+  return cache().measured;
+}
+
+void FourierTransform::setMeasureAfter(int executions)
+{
+  std::lock_guard<std::mutex> lock(cache().mutex);
+  cache().measure_after = executions;
 }
 }  // namespace biovision_v1

@@ -526,7 +526,8 @@ std::vector<Frame> readFrames(const std::string& path, int loops, std::vector<tf
 int main(int argc, char** argv)
 {
   std::string bag_path, json_path, phases_list = "frontend,ours,peer";
-  int loops = 3, in_flight = 2, warmup = 5, opencv_threads = 1;
+  int loops = 3, in_flight = 2, warmup = 20,
+      opencv_threads = 1;  // warm-up: DFT plans are measured on a size's 16th run
   double timeout = 20.0;
   biovision_common::ToolOptions options("loop_bench", kDescription);
   CLI::App& app = options.app();

@@ -87,7 +87,7 @@ void PixelDescriptorImage::compute(const std::vector<cv::Mat>& odd, PixelDescrip
       const int o = job / h, y = job % h;
       const ResponseRow in = responseRow(odd, o, y);
       std::uint8_t* out = reversedRow(o, y) + 8;
-      std::fill(out - 8, out + 1, 0);  // left margin; out[0] (x = w-1): R(w-1) > R(w-1) is false
+      std::fill(out - 8, out + 1, 0);      // left margin; out[0] (x = w-1): R(w-1) > R(w-1) is false
       std::fill(out + w, out + w + 8, 0);  // right margin
       for (int x = 0; x + 1 < w; ++x)
         out[w - 1 - x] = in.r[x * in.step] > in.r[(x + 1) * in.step] ? 0xFF : 0;

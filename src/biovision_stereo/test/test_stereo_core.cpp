@@ -542,7 +542,10 @@ TEST(CostSimd, Avx2PathGivesTheGenericBitsForBit)
   struct EstimatedPlansOnly
   {
     EstimatedPlansOnly() { biovision_v1::FourierTransform::setMeasureAfter(0); }
-    ~EstimatedPlansOnly() { biovision_v1::FourierTransform::setMeasureAfter(biovision_v1::FourierTransform::kMeasureAfter); }
+    ~EstimatedPlansOnly()
+    {
+      biovision_v1::FourierTransform::setMeasureAfter(biovision_v1::FourierTransform::kMeasureAfter);
+    }
   } estimated_plans_only;
   std::vector<CostSimd> simds{CostSimd::kGeneric};
   if (bestCostSimd() == CostSimd::kAvx2)

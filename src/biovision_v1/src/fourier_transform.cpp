@@ -231,4 +231,16 @@ void FourierTransform::setMeasureAfter(int executions)
   std::lock_guard<std::mutex> lock(cache().mutex);
   cache().measure_after = executions;
 }
+int FourierTransform::warmUp(const std::function<void()>& run, int max_runs)
+{
+  int calls = 0;
+  long before = 0;
+  do
+  {
+    before = plansMade();
+    run();
+    ++calls;
+  } while (plansMade() != before && calls < max_runs);
+  return calls;
+}
 }  // namespace biovision_v1

@@ -169,6 +169,20 @@ TEST(FourierTransform, MeasuresThePlanOfASizeRunOftenAndStaysExact)
   EXPECT_LT(spectrumError(out, ref), 1e-5);
 }
 
+TEST(FourierTransform, WarmUpRunsUntilNoPlanIsMade)
+{
+  // 10 transforms of a new size per call: call 1 makes the estimated plan, call 2 crosses the 16th run and
+  // measures it, call 3 makes none.
+  cv::Mat complex(41, 47, CV_32FC2, cv::Scalar::all(1)), out;
+  const auto run = [&] {
+    for (int i = 0; i < 10; ++i)
+      FourierTransform::inverseUnscaled(complex, out);
+  };
+  EXPECT_EQ(FourierTransform::warmUp(run), 3);
+  EXPECT_EQ(FourierTransform::warmUp(run), 1);
+  EXPECT_EQ(FourierTransform::warmUp([] {}, 5), 1);
+}
+
 TEST(EndStoppedCells, ShiftedIsExactBilinearWithReplicatedEdges)
 {
   cv::Mat src(23, 31, CV_32F);

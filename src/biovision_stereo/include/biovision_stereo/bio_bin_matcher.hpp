@@ -85,7 +85,7 @@ private:
   std::vector<std::unique_ptr<biovision_v1::SimpleCellBank>> odd_banks_;
   std::vector<std::unique_ptr<biovision_v1::SimpleCellBank>> barrier_banks_;
   std::vector<std::uint16_t> sgm_costs_, sgm_forward_, sgm_backward_;  // reused between frames
-  std::vector<CostVolume> spare_;  // each level's cost volume of the last frame, memory reused
+  std::vector<CostVolume> spare_;                           // each level's cost volume of the last frame, memory reused
   std::vector<std::array<PixelDescriptorImage, 2>> codes_;  // each level's left and right descriptors, reused
 };
 }  // namespace biovision_stereo

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include <opencv2/core.hpp>
@@ -50,5 +51,9 @@ public:
   /// Executions after which a size's plan is measured, for the whole process; <= 0: never (estimated
   /// plans only, e.g. for bit-reproducible runs).
   static void setMeasureAfter(int executions);
+
+  /// Benchmarks' warm-up: calls `run` until a call makes no plan (so that plans are measured before the
+  /// timed runs, not in them), at most max_runs times; returns the calls made (>= 1).
+  static int warmUp(const std::function<void()>& run, int max_runs = 8);
 };
 }  // namespace biovision_v1

@@ -94,7 +94,7 @@ private:
 
   GaborParameters parameters_;
   std::vector<PlanSet> cache_;
-  int current_ = -1;  // the cache_ entry plan() chose last
+  int current_ = -1;                    // the cache_ entry plan() chose last
   std::vector<cv::Mat> pair_products_;  // computeOddPairs' inverse DFTs, reused once the caller let go
   long uses_ = 0, plans_built_ = 0;
 };

@@ -38,6 +38,7 @@
 #include "biovision_stereo/cost_simd.hpp"
 #include "biovision_stereo/hamming.hpp"
 #include "biovision_stereo/semi_global_aggregation.hpp"
+#include "biovision_v1/fourier_transform.hpp"
 
 namespace
 {
@@ -526,8 +527,9 @@ std::vector<Frame> readFrames(const std::string& path, int loops, std::vector<tf
 int main(int argc, char** argv)
 {
   std::string bag_path, json_path, phases_list = "frontend,ours,peer";
-  int loops = 3, in_flight = 2, warmup = 20,
-      opencv_threads = 1;  // warm-up: DFT plans are measured on a size's 16th run
+  int loops = 3, in_flight = 2, opencv_threads = 1;
+  int warmup = 20;  // DFT plans are measured on a size's 16th run (biovision_v1::FourierTransform)
+  int fft_measure_after = biovision_v1::FourierTransform::kMeasureAfter;
   double timeout = 20.0;
   biovision_common::ToolOptions options("loop_bench", kDescription);
   CLI::App& app = options.app();
@@ -540,10 +542,13 @@ int main(int argc, char** argv)
                  "stage's CPU is its callback thread's)")
       ->check(biovision_common::kPositive);
   app.add_option("--phases", phases_list, "comma list of frontend, ours, peer");
+  app.add_option("--fft-measure-after", fft_measure_after,
+                 "runs of a DFT size after which its plan is measured (0: estimated plans only)");
   app.add_option("--timeout", timeout, "[s] longest wait for a frame")->check(biovision_common::kPositive);
   app.add_option("--json", json_path, "write the figures to this file");
   options.parse(argc, argv);
 
+  biovision_v1::FourierTransform::setMeasurePolicy(fft_measure_after);
   ros::init(argc, argv, "loop_bench");
   cv::setNumThreads(opencv_threads);
   ros::NodeHandle nh;
@@ -593,6 +598,7 @@ int main(int argc, char** argv)
   figures["bag"] = std::filesystem::weakly_canonical(bag_path).string();  // no launch-file "../.."
   figures["hardware_threads"] = std::thread::hardware_concurrency();
   figures["opencv_threads"] = opencv_threads;
+  figures["fft_measure_after"] = fft_measure_after;
   int manager_threads = 0;
   ros::param::get("~num_worker_threads", manager_threads);  // nodelet::Loader's own parameter (0: one per core)
   figures["manager_threads"] = manager_threads > 0 ? manager_threads
@@ -627,6 +633,7 @@ int main(int argc, char** argv)
       status = 1;
     }
   }
+  figures["fft_plans_measured"] = biovision_v1::FourierTransform::plansMeasured();  // by every phase
   if (figures.contains("ours") && figures.contains("peer") && figures["ours"].contains("frames_per_s") &&
       figures["peer"].contains("frames_per_s"))
   {

@@ -541,10 +541,10 @@ TEST(CostSimd, Avx2PathGivesTheGenericBitsForBit)
   // their runs. RAII, so a failed assertion still restores the process-wide default.
   struct EstimatedPlansOnly
   {
-    EstimatedPlansOnly() { biovision_v1::FourierTransform::setMeasureAfter(0); }
+    EstimatedPlansOnly() { biovision_v1::FourierTransform::setMeasurePolicy(0); }
     ~EstimatedPlansOnly()
     {
-      biovision_v1::FourierTransform::setMeasureAfter(biovision_v1::FourierTransform::kMeasureAfter);
+      biovision_v1::FourierTransform::setMeasurePolicy(biovision_v1::FourierTransform::kMeasureAfter);
     }
   } estimated_plans_only;
   std::vector<CostSimd> simds{CostSimd::kGeneric};

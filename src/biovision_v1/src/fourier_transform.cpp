@@ -53,6 +53,8 @@ struct Cache
   std::map<Key, Entry> plans;
   long uses = 0, made = 0, measured = 0;
   int measure_after = FourierTransform::kMeasureAfter;
+  int measure_budget = FourierTransform::kMaxMeasuredPlans, budget_used = 0;
+  bool mayMeasure() const { return measure_after > 0 && budget_used < measure_budget; }
 };
 
 Cache& cache()
@@ -95,7 +97,9 @@ std::shared_ptr<fftwf_plan_s> makePlan(const Key& key, unsigned flags)
 // The plan to execute for key: a new size gets an FFTW_ESTIMATE plan at once (about 1 ms); a size
 // executed measure_after times is planned again with FFTW_MEASURE (100-300 ms once, by the thread that
 // crossed the count, while the others keep executing the estimated plan), which runs the bank's sizes
-// 1.3-3.6x faster (fftw 3.3.10 here: 480x640 complex 2.4 -> 0.67 ms, 400x480 0.80 -> 0.45 ms).
+// 1.3-3.6x faster (fftw 3.3.10 here: 480x640 complex 2.4 -> 0.67 ms, 400x480 0.80 -> 0.45 ms), until
+// measure_budget plans have been measured: recognition's crops come in ever new sizes, and measuring
+// each that recurs took its CPU per frame from 39 to 289 ms in loop_bench.
 std::shared_ptr<fftwf_plan_s> planFor(const Key& key)
 {
   Cache& c = cache();
@@ -110,9 +114,10 @@ std::shared_ptr<fftwf_plan_s> planFor(const Key& key)
       Entry& e = it->second;
       e.last_use = c.uses;
       ++e.executions;
-      if (e.measured || c.measure_after <= 0 || e.executions < c.measure_after)
+      if (e.measured || !c.mayMeasure() || e.executions < c.measure_after)
         return e.plan;
       e.measured = true;  // this thread measures; the others keep the estimated plan meanwhile
+      ++c.budget_used;
       measure = true;
     }
   }
@@ -226,21 +231,33 @@ long FourierTransform::plansMeasured()
   return cache().measured;
 }
 
-void FourierTransform::setMeasureAfter(int executions)
+void FourierTransform::setMeasurePolicy(int after_executions, int max_measured_plans)
 {
   std::lock_guard<std::mutex> lock(cache().mutex);
-  cache().measure_after = executions;
+  cache().measure_after = after_executions;
+  cache().measure_budget = max_measured_plans;
+  cache().budget_used = 0;
 }
 int FourierTransform::warmUp(const std::function<void()>& run, int max_runs)
 {
+  Cache& c = cache();
   int calls = 0;
-  long before = 0;
-  do
+  bool pending = true;
+  while (pending && calls < max_runs)
   {
-    before = plansMade();
+    long since = 0;
+    {
+      std::lock_guard<std::mutex> lock(c.mutex);
+      since = c.uses;
+    }
     run();
     ++calls;
-  } while (plansMade() != before && calls < max_runs);
+    // Again while a plan this run used is still an estimated one that will be measured.
+    std::lock_guard<std::mutex> lock(c.mutex);
+    pending = false;
+    for (const auto& [key, entry] : c.plans)
+      pending = pending || (entry.last_use > since && !entry.measured && c.mayMeasure());
+  }
   return calls;
 }
 }  // namespace biovision_v1

@@ -151,6 +151,7 @@ TEST(FourierTransform, MeasuresThePlanOfASizeRunOftenAndStaysExact)
 {
   // A size no other test uses: estimated for its first kMeasureAfter - 1 runs, then measured once (the
   // measured plan is kept: later runs make none), and every run still equals cv::dft.
+  FourierTransform::setMeasurePolicy(FourierTransform::kMeasureAfter);  // the budget, whatever ran before
   cv::Mat complex(53, 61, CV_32FC2), ref, out;
   cv::randu(complex, -1.0, 1.0);
   cv::dft(complex, ref, cv::DFT_INVERSE);
@@ -169,18 +170,43 @@ TEST(FourierTransform, MeasuresThePlanOfASizeRunOftenAndStaysExact)
   EXPECT_LT(spectrumError(out, ref), 1e-5);
 }
 
-TEST(FourierTransform, WarmUpRunsUntilNoPlanIsMade)
+TEST(FourierTransform, WarmUpRunsUntilEveryPlanItUsesIsMeasured)
 {
-  // 10 transforms of a new size per call: call 1 makes the estimated plan, call 2 crosses the 16th run and
-  // measures it, call 3 makes none.
-  cv::Mat complex(41, 47, CV_32FC2, cv::Scalar::all(1)), out;
+  // Per call, 10 inverse transforms of one new size and 3 forward ones of another: the inverse plan is
+  // measured in call 2, the forward one in call 6 (its 16th run), and call 6 ends the warm-up.
+  FourierTransform::setMeasurePolicy(FourierTransform::kMeasureAfter);
+  cv::Mat a(41, 47, CV_32FC2, cv::Scalar::all(1)), b(43, 37, CV_32FC2, cv::Scalar::all(1)), out;
   const auto run = [&] {
     for (int i = 0; i < 10; ++i)
-      FourierTransform::inverseUnscaled(complex, out);
+      FourierTransform::inverseUnscaled(a, out);
+    for (int i = 0; i < 3; ++i)
+      FourierTransform::forward(b, out);
   };
-  EXPECT_EQ(FourierTransform::warmUp(run), 3);
+  const long measured = FourierTransform::plansMeasured();
+  EXPECT_EQ(FourierTransform::warmUp(run), 6);
+  EXPECT_EQ(FourierTransform::plansMeasured(), measured + 2);
   EXPECT_EQ(FourierTransform::warmUp(run), 1);
   EXPECT_EQ(FourierTransform::warmUp([] {}, 5), 1);
+  EXPECT_EQ(FourierTransform::warmUp(run, 0), 0);
+}
+
+TEST(FourierTransform, MeasuresNoMorePlansThanItsBudget)
+{
+  // Budget 1: of two sizes run 16 times each, only the first is measured; warmUp does not wait for the
+  // second (it will never be measured).
+  FourierTransform::setMeasurePolicy(FourierTransform::kMeasureAfter, 1);
+  cv::Mat a(29, 31, CV_32FC2, cv::Scalar::all(1)), b(31, 29, CV_32FC2, cv::Scalar::all(1)), out;
+  const long measured = FourierTransform::plansMeasured();
+  const auto run = [&] {
+    FourierTransform::inverseUnscaled(a, out);
+    FourierTransform::inverseUnscaled(b, out);
+  };
+  EXPECT_EQ(FourierTransform::warmUp(run, 100), FourierTransform::kMeasureAfter);
+  EXPECT_EQ(FourierTransform::plansMeasured(), measured + 1);
+  for (int i = 0; i < 20; ++i)
+    run();
+  EXPECT_EQ(FourierTransform::plansMeasured(), measured + 1);
+  FourierTransform::setMeasurePolicy(FourierTransform::kMeasureAfter);
 }
 
 TEST(EndStoppedCells, ShiftedIsExactBilinearWithReplicatedEdges)

@@ -18,8 +18,9 @@ namespace biovision_v1
 /// shared by every thread of the process; executing them is thread-safe, making them is serialised here.
 /// A new size gets an FFTW_ESTIMATE plan (no timing runs, about 1 ms); once a size has run kMeasureAfter
 /// times (a camera stream's size, not a test's odd one) it is planned again with FFTW_MEASURE (100-300 ms
-/// once, at most kMeasureTimeLimit, while other threads keep running the estimated plan): 1.3-3.6x faster
-/// transforms here (fftw 3.3.10, Xeon: 480x640 complex 2.4 -> 0.67 ms, 400x480 0.80 -> 0.45 ms, 240x320
+/// once, at most kMeasureTimeLimit, while other threads keep running the estimated plan; at most
+/// kMaxMeasuredPlans per process): 1.3-3.6x faster
+/// transforms here (fftw 3.3.10, AMD EPYC: 480x640 complex 2.4 -> 0.67 ms, 400x480 0.80 -> 0.45 ms, 240x320
 /// 0.18 -> 0.13 ms). A measured plan is chosen by timing, so its rounding may differ from one process to
 /// the next by about 1e-7 of the spectrum's peak. The least recently used plans are dropped beyond
 /// kMaxPlans, so a consumer of ever-changing sizes keeps a bounded cache.
@@ -27,8 +28,11 @@ class FourierTransform
 {
 public:
   static constexpr int kMaxPlans = 512;
-  /// Executions of one size and kind after which its plan is measured (setMeasureAfter() overrides).
+  /// Executions of one size and kind after which its plan is measured (setMeasurePolicy() overrides).
   static constexpr int kMeasureAfter = 16;
+  /// Plans measured per process at most: a camera stream's few sizes, not every size of the crops a
+  /// recognition stage transforms (measuring each of those cost more than it saved).
+  static constexpr int kMaxMeasuredPlans = 24;
   /// FFTW's planning time limit for a measured plan [s].
   static constexpr double kMeasureTimeLimit = 1.0;
 
@@ -48,12 +52,13 @@ public:
   static long plansMade();
   /// FFTW_MEASURE plans made so far in this process.
   static long plansMeasured();
-  /// Executions after which a size's plan is measured, for the whole process; <= 0: never (estimated
-  /// plans only, e.g. for bit-reproducible runs).
-  static void setMeasureAfter(int executions);
+  /// Executions after which a size's plan is measured and how many plans may be measured from now on,
+  /// for the whole process; after_executions <= 0: never (estimated plans only, e.g. for bit-reproducible
+  /// runs).
+  static void setMeasurePolicy(int after_executions, int max_measured_plans = kMaxMeasuredPlans);
 
-  /// Benchmarks' warm-up: calls `run` until a call makes no plan (so that plans are measured before the
-  /// timed runs, not in them), at most max_runs times; returns the calls made (>= 1).
-  static int warmUp(const std::function<void()>& run, int max_runs = 8);
+  /// Benchmarks' warm-up: calls `run` until every plan a call used is a measured one (so that plans are
+  /// measured before the timed runs, not in them), at most max_runs times; returns the calls made.
+  static int warmUp(const std::function<void()>& run, int max_runs = 2 * kMeasureAfter);
 };
 }  // namespace biovision_v1

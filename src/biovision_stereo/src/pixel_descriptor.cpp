@@ -61,6 +61,7 @@ PixelDescriptorImage PixelDescriptorImage::compute(const std::vector<cv::Mat>& o
 {
   PixelDescriptorImage image;
   compute(odd, image);
+  image.comparisons_ = {};  // the scratch only pays off in a reused image; a returned one travels light
   return image;
 }
 

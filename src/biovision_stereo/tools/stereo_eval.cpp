@@ -40,8 +40,8 @@ const char* kDescription =
     "16), biobin_fast_thesis, bm,\n"
     "bm_fast (StereoBM on the quarter-size pair, the fast mode's resolution), sgbm (MODE_SGBM_3WAY), binary_sgbm\n"
     "(contrib). Metrics on the non-occluded mask when there is one: bad0.5/1/2/4 (%, invalid = bad), avgerr over\n"
-    "valid estimates, invalid %, seconds per pair (median of --repeats runs after warm-up runs until no DFT plan is "
-    "made), BioBin's stage\n"
+    "valid estimates, invalid %, seconds per pair (median of --repeats runs after warm-up runs until the DFT "
+    "plans are measured), BioBin's stage\n"
     "times. --split train|report|all picks the scenes by the fixed whole-scene split written in the JSON: tune on\n"
     "train, report on report. Prints the JSON.";
 
@@ -286,7 +286,7 @@ int main(int argc, char** argv)
     {
       const Matcher& match = matchers.at(name);
       cv::Mat d;
-      biovision_v1::FourierTransform::warmUp([&] { d = match(s); });  // until no DFT plan is made or measured
+      biovision_v1::FourierTransform::warmUp([&] { d = match(s); });  // until the DFT plans it uses are measured
       std::vector<double> t;
       for (int r = 0; r < repeats; ++r)
       {

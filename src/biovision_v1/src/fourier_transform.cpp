@@ -2,6 +2,7 @@
 
 #include <fftw3.h>
 
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -33,14 +34,14 @@ struct Key
 struct Entry
 {
   std::shared_ptr<fftwf_plan_s> plan;
-  long last_use = 0;
-  int executions = 0;     // since the plan was made
+  std::int64_t last_use = 0;
+  int executions = 0;     // since the plan was made, counted up to the measuring threshold only
   bool measured = false;  // an FFTW_MEASURE plan (or its making is under way)
 };
 
 // FFTW's planner (making and destroying plans) is not thread-safe; fftwf_execute_dft* is. Lock order:
-// the planner's lock is never taken while the cache's is held, so a thread measuring a plan (up to
-// kMeasureTimeLimit) never stops the others from finding and executing the plans they have.
+// the planner's lock is never taken while the cache's is held, so a thread measuring a plan never stops
+// the others from finding and executing the plans they have (a thread that needs a new plan waits).
 std::mutex& plannerMutex()
 {
   static std::mutex m;
@@ -51,7 +52,7 @@ struct Cache
 {
   std::mutex mutex;
   std::map<Key, Entry> plans;
-  long uses = 0, made = 0, measured = 0;
+  std::int64_t uses = 0, made = 0, measured = 0;
   int measure_after = FourierTransform::kMeasureAfter;
   int measure_budget = FourierTransform::kMaxMeasuredPlans, budget_used = 0;
   bool mayMeasure() const { return measure_after > 0 && budget_used < measure_budget; }
@@ -59,6 +60,7 @@ struct Cache
 
 Cache& cache()
 {
+  plannerMutex();  // constructed first, so destroyed after the cache, whose plans' deleters lock it
   static Cache c;
   return c;
 }
@@ -113,15 +115,32 @@ std::shared_ptr<fftwf_plan_s> planFor(const Key& key)
     {
       Entry& e = it->second;
       e.last_use = c.uses;
-      ++e.executions;
-      if (e.measured || !c.mayMeasure() || e.executions < c.measure_after)
+      if (e.measured || !c.mayMeasure())
+        return e.plan;
+      if (++e.executions < c.measure_after)  // never past the threshold: no overflow in a long run
         return e.plan;
       e.measured = true;  // this thread measures; the others keep the estimated plan meanwhile
       ++c.budget_used;
       measure = true;
     }
   }
-  std::shared_ptr<fftwf_plan_s> plan = makePlan(key, measure ? FFTW_MEASURE : FFTW_ESTIMATE);
+  std::shared_ptr<fftwf_plan_s> plan;
+  try
+  {
+    plan = makePlan(key, measure ? FFTW_MEASURE : FFTW_ESTIMATE);
+  }
+  catch (const std::exception&)
+  {
+    if (!measure)
+      throw;
+    // Measuring failed: give the budget back and keep the estimated plan (never measured again).
+    std::lock_guard<std::mutex> lock(c.mutex);
+    --c.budget_used;
+    auto it = c.plans.find(key);
+    if (it == c.plans.end())
+      throw;
+    return it->second.plan;
+  }
   std::lock_guard<std::mutex> lock(c.mutex);
   ++c.made;
   c.measured += measure ? 1 : 0;
@@ -135,6 +154,7 @@ std::shared_ptr<fftwf_plan_s> planFor(const Key& key)
     }
     replaced = std::move(it->second.plan);
     it->second.plan = plan;
+    it->second.measured = true;  // also when another thread re-made an evicted entry meanwhile
     return plan;
   }
   if (static_cast<int>(c.plans.size()) >= FourierTransform::kMaxPlans)
@@ -245,7 +265,7 @@ int FourierTransform::warmUp(const std::function<void()>& run, int max_runs)
   bool pending = true;
   while (pending && calls < max_runs)
   {
-    long since = 0;
+    std::int64_t since = 0;
     {
       std::lock_guard<std::mutex> lock(c.mutex);
       since = c.uses;

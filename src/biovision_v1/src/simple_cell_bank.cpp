@@ -18,7 +18,7 @@ namespace
 // what an earlier caller was given; a buffer only m holds is kept for reuse.
 void releaseIfShared(cv::Mat& m)
 {
-  if (m.u && m.u->refcount > 1)
+  if (m.u && CV_XADD(&m.u->refcount, 0) > 1)  // an atomic read: other threads may release their views
     m.release();
 }
 

@@ -1,6 +1,9 @@
 // Unit tests of the ROS-free V1 core on synthetic images with known answers.
+#include <atomic>
 #include <cmath>
 #include <limits>
+#include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
@@ -206,6 +209,41 @@ TEST(FourierTransform, MeasuresNoMorePlansThanItsBudget)
   for (int i = 0; i < 20; ++i)
     run();
   EXPECT_EQ(FourierTransform::plansMeasured(), measured + 1);
+  FourierTransform::setMeasurePolicy(FourierTransform::kMeasureAfter);
+}
+
+TEST(FourierTransform, ManyThreadsManySizesWhilePlansAreMeasuredAndEvicted)
+{
+  // 4 threads transform kMaxPlans + 88 small sizes (so the cache evicts) in different orders, every size
+  // 3 times, with plans measured after 2 runs (budget 6): every result still equals cv::dft.
+  FourierTransform::setMeasurePolicy(2, 6);
+  const long measured = FourierTransform::plansMeasured(), made = FourierTransform::plansMade();
+  std::vector<cv::Size> sizes;
+  for (int i = 0; sizes.size() < size_t(FourierTransform::kMaxPlans + 88); ++i)
+    sizes.emplace_back(3 + i % 29, 200 + i / 29);  // distinct, never another test's sizes
+  std::atomic<int> wrong{0};
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t)
+    threads.emplace_back([&, t] {
+      cv::RNG rng(t);
+      for (int round = 0; round < 3; ++round)
+        for (size_t i = 0; i < sizes.size(); ++i)
+        {
+          const cv::Size size = sizes[(i * (2 * t + 1) + round * 7) % sizes.size()];
+          cv::Mat x(size, CV_32FC2), ref, ours;
+          rng.fill(x, cv::RNG::UNIFORM, -1.0, 1.0);
+          cv::dft(x, ref, cv::DFT_INVERSE);
+          FourierTransform::inverseUnscaled(x, ours);
+          if (spectrumError(ours, ref) > 1e-5)
+            ++wrong;
+        }
+    });
+  for (std::thread& th : threads)
+    th.join();
+  EXPECT_EQ(wrong.load(), 0);
+  EXPECT_EQ(FourierTransform::plansMeasured(), measured + 6);
+  // Evicted sizes were planned again: more plans than sizes (+ the 6 measured ones).
+  EXPECT_GT(FourierTransform::plansMade(), made + long(sizes.size()) + 6);
   FourierTransform::setMeasurePolicy(FourierTransform::kMeasureAfter);
 }
 

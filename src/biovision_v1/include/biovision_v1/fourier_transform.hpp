@@ -18,8 +18,8 @@ namespace biovision_v1
 /// shared by every thread of the process; executing them is thread-safe, making them is serialised here.
 /// A new size gets an FFTW_ESTIMATE plan (no timing runs, about 1 ms); once a size has run kMeasureAfter
 /// times (a camera stream's size, not a test's odd one) it is planned again with FFTW_MEASURE (100-300 ms
-/// once, at most kMeasureTimeLimit, while other threads keep running the estimated plan; at most
-/// kMaxMeasuredPlans per process): 1.3-3.6x faster
+/// once, about kMeasureTimeLimit at most, while other threads keep running the plans they have; one that
+/// needs a new plan waits; at most kMaxMeasuredPlans since the last setMeasurePolicy()): 1.3-3.6x faster
 /// transforms here (fftw 3.3.10, AMD EPYC: 480x640 complex 2.4 -> 0.67 ms, 400x480 0.80 -> 0.45 ms, 240x320
 /// 0.18 -> 0.13 ms). A measured plan is chosen by timing, so its rounding may differ from one process to
 /// the next by about 1e-7 of the spectrum's peak. The least recently used plans are dropped beyond

@@ -44,7 +44,8 @@ public:
   /// computeOdd() without its final split: per scale one CV_32FC2 map per orientation pair, R^O of
   /// orientation 2i in channel 0 and of 2i+1 in channel 1 (an odd count's last pair has 0 in channel 1).
   /// The maps are views into the padded inverse DFTs (not continuous): one pass over the data fewer. The
-  /// bank reuses those buffers in its next call once every view of them is released (held views stay valid).
+  /// bank reuses those buffers in its next call once every cv::Mat view of them is released (held cv::Mat
+  /// views stay valid; a raw pointer into them does not).
   std::vector<std::vector<cv::Mat>> computeOddPairs(const cv::Mat& gray);
 
   const GaborParameters& parameters() const { return parameters_; }

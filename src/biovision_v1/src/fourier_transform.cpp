@@ -3,6 +3,7 @@
 #include <fftw3.h>
 
 #include <cstdint>
+#include <cstdlib>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -48,12 +49,24 @@ std::mutex& plannerMutex()
   return m;
 }
 
+// BIOVISION_FFT_MEASURE_AFTER: the process's measuring threshold (0: estimated plans only), e.g. from a
+// launch file's <env>; unset or not a number: kMeasureAfter.
+int measureAfterFromEnvironment()
+{
+  const char* v = std::getenv("BIOVISION_FFT_MEASURE_AFTER");
+  if (!v || !*v)
+    return FourierTransform::kMeasureAfter;
+  char* end = nullptr;
+  const long n = std::strtol(v, &end, 10);
+  return *end == '\0' && n >= 0 && n <= 1000000 ? static_cast<int>(n) : FourierTransform::kMeasureAfter;
+}
+
 struct Cache
 {
   std::mutex mutex;
   std::map<Key, Entry> plans;
   std::int64_t uses = 0, made = 0, measured = 0;
-  int measure_after = FourierTransform::kMeasureAfter;
+  int measure_after = measureAfterFromEnvironment();
   int measure_budget = FourierTransform::kMaxMeasuredPlans, budget_used = 0;
   bool mayMeasure() const { return measure_after > 0 && budget_used < measure_budget; }
 };

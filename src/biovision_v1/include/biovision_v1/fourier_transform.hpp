@@ -28,7 +28,8 @@ class FourierTransform
 {
 public:
   static constexpr int kMaxPlans = 512;
-  /// Executions of one size and kind after which its plan is measured (setMeasurePolicy() overrides).
+  /// Executions of one size and kind after which its plan is measured (the environment variable
+  /// BIOVISION_FFT_MEASURE_AFTER, read once per process, and setMeasurePolicy() override it).
   static constexpr int kMeasureAfter = 16;
   /// Plans measured per process at most: a camera stream's few sizes, not every size of the crops a
   /// recognition stage transforms (measuring each of those cost more than it saved).

@@ -606,7 +606,7 @@ int main(int argc, char** argv)
   // Which instruction set each SIMD stage of ours ran (the same libraries are loaded into this process).
   figures["simd"] = {{"cpu", biovision_common::CpuFeatures::host().describe()},
                      {"biobin_cost_volume", biovision_stereo::costSimdName(biovision_stereo::bestCostSimd())},
-                     {"biobin_hamming", biovision_stereo::Hamming::usesPopcnt() ? "popcnt" : "generic"},
+                     {"biobin_hamming", biovision_stereo::Hamming::pathName()},
                      {"biobin_semi_global_aggregation", biovision_stereo::SemiGlobalAggregation::name(
                                                             biovision_stereo::SemiGlobalAggregation::bestSimd())},
                      {"recognition_matcher", biovision_common::toString(biovision_common::bestHammingPath())}};

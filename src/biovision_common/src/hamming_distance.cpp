@@ -192,6 +192,93 @@ __attribute__((target("avx512f,avx512vpopcntdq,popcnt"))) void avx512Distances(c
     popcntDistances(q, c + i * words, count - i, words, out + i);
 }
 
+void scalarPairwise(const uint64_t* a, const uint64_t* b, size_t count, int words, uint16_t* out)
+{
+  for (size_t i = 0; i < count; ++i, a += words, b += words)
+    out[i] = static_cast<uint16_t>(hammingDistanceReference(a, b, words));
+}
+
+__attribute__((target("popcnt"))) void popcntPairwise(const uint64_t* a, const uint64_t* b, size_t count, int words,
+                                                      uint16_t* out)
+{
+  if (words == 4)  // unrolled: the stereo cost volume's case
+  {
+    for (size_t i = 0; i < count; ++i, a += 4, b += 4)
+      out[i] = static_cast<uint16_t>(_mm_popcnt_u64(a[0] ^ b[0]) + _mm_popcnt_u64(a[1] ^ b[1]) +
+                                     _mm_popcnt_u64(a[2] ^ b[2]) + _mm_popcnt_u64(a[3] ^ b[3]));
+    return;
+  }
+  for (size_t i = 0; i < count; ++i, a += words, b += words)
+  {
+    uint64_t d = 0;
+    for (int w = 0; w < words; ++w)
+      d += _mm_popcnt_u64(a[w] ^ b[w]);
+    out[i] = static_cast<uint16_t>(d);
+  }
+}
+
+// 8 pairs of 256-bit codes: per-64-bit-lane counts (SAD of the byte counts), then packus + madd add each
+// code's halves and narrow to 16 bits, as sixteen128 does; one 128-bit add joins the halves of the lanes.
+__attribute__((target("avx2"))) inline void eight256Pairwise(const uint64_t* a, const uint64_t* b, uint16_t* out)
+{
+  const __m256i zero = _mm256_setzero_si256(), ones = _mm256_set1_epi16(1);
+  const __m256i* pa = reinterpret_cast<const __m256i*>(a);
+  const __m256i* pb = reinterpret_cast<const __m256i*>(b);
+  __m256i s[8];
+  for (int k = 0; k < 8; ++k)  // s[k] = [c(k).w0, c(k).w1 | c(k).w2, c(k).w3] as 64-bit lanes
+    s[k] = _mm256_sad_epu8(popcountBytes256(_mm256_xor_si256(_mm256_loadu_si256(pa + k), _mm256_loadu_si256(pb + k))),
+                           zero);
+  // 16-bit words per lane: lane 0 = [c0.w0 c0.w1 c1.w0 c1.w1 c2.. c3..], lane 1 the same of w2, w3; madd
+  // adds pairs: lane 0 = (w0 + w1) of c0..c3, lane 1 = (w2 + w3) of c0..c3 as 32-bit.
+  const __m256i lo = _mm256_madd_epi16(
+      _mm256_packus_epi32(_mm256_packus_epi32(s[0], s[1]), _mm256_packus_epi32(s[2], s[3])), ones);
+  const __m256i hi = _mm256_madd_epi16(
+      _mm256_packus_epi32(_mm256_packus_epi32(s[4], s[5]), _mm256_packus_epi32(s[6], s[7])), ones);
+  const __m256i sum = _mm256_add_epi32(_mm256_permute2x128_si256(lo, hi, 0x20),
+                                       _mm256_permute2x128_si256(lo, hi, 0x31));  // [c0..c3 | c4..c7]
+  const __m256i packed = _mm256_permute4x64_epi64(_mm256_packus_epi32(sum, sum), 0x08);
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(out), _mm256_castsi256_si128(packed));
+}
+
+__attribute__((target("avx2,popcnt"))) void avx2Pairwise(const uint64_t* a, const uint64_t* b, size_t count, int words,
+                                                         uint16_t* out)
+{
+  size_t i = 0;
+  if (words == 4)
+    for (; i + 8 <= count; i += 8)
+      eight256Pairwise(a + 4 * i, b + 4 * i, out + i);
+  if (i < count)
+    popcntPairwise(a + i * words, b + i * words, count - i, words, out + i);
+}
+
+__attribute__((target("avx512f,avx512vpopcntdq,popcnt"))) void avx512Pairwise(const uint64_t* a, const uint64_t* b,
+                                                                              size_t count, int words, uint16_t* out)
+{
+  size_t i = 0;
+  if (words == 4)
+  {
+    // Two codes per vector; two rounds of even/odd lane pairing add each code's four counts in order.
+    const __m512i even = _mm512_setr_epi64(0, 2, 4, 6, 8, 10, 12, 14);
+    const __m512i odd = _mm512_setr_epi64(1, 3, 5, 7, 9, 11, 13, 15);
+    for (; i + 8 <= count; i += 8)
+    {
+      __m512i p[4];
+      for (int k = 0; k < 4; ++k)
+        p[k] = _mm512_popcnt_epi64(
+            _mm512_xor_si512(_mm512_loadu_si512(a + 4 * i + 8 * k), _mm512_loadu_si512(b + 4 * i + 8 * k)));
+      const __m512i e = _mm512_add_epi64(_mm512_permutex2var_epi64(p[0], even, p[1]),
+                                         _mm512_permutex2var_epi64(p[0], odd, p[1]));  // c0..c3, two halves each
+      const __m512i f = _mm512_add_epi64(_mm512_permutex2var_epi64(p[2], even, p[3]),
+                                         _mm512_permutex2var_epi64(p[2], odd, p[3]));  // c4..c7
+      const __m512i sum =
+          _mm512_add_epi64(_mm512_permutex2var_epi64(e, even, f), _mm512_permutex2var_epi64(e, odd, f));
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(out + i), _mm512_cvtepi64_epi16(sum));
+    }
+  }
+  if (i < count)
+    popcntPairwise(a + i * words, b + i * words, count - i, words, out + i);
+}
+
 bool available(HammingPath path)
 {
   switch (path)
@@ -246,6 +333,26 @@ int hammingDistanceReference(const uint64_t* a, const uint64_t* b, int words)
   for (int w = 0; w < words; ++w)
     d += countBits(a[w] ^ b[w]);
   return d;
+}
+
+void hammingDistancesPairwise(HammingPath path, const uint64_t* a, const uint64_t* b, size_t count, int words,
+                              uint16_t* out)
+{
+  if (words != 1 && words != 2 && words != 4 && words != 8)
+    throw std::invalid_argument("hammingDistancesPairwise: words must be 1, 2, 4 or 8");
+  if (!available(path))
+    throw std::invalid_argument("hammingDistancesPairwise: this CPU cannot run the " + toString(path) + " path");
+  switch (path)
+  {
+    case HammingPath::Scalar:
+      return scalarPairwise(a, b, count, words, out);
+    case HammingPath::Popcnt:
+      return popcntPairwise(a, b, count, words, out);
+    case HammingPath::Avx2:
+      return avx2Pairwise(a, b, count, words, out);
+    case HammingPath::Avx512:
+      return avx512Pairwise(a, b, count, words, out);
+  }
 }
 
 void hammingDistances(HammingPath path, const uint64_t* query, const uint64_t* codes, size_t count, int words,

@@ -76,6 +76,36 @@ TEST(HammingDistance, EveryAvailablePathEqualsTheScalarReference)
     }
 }
 
+TEST(HammingDistance, EveryAvailablePairwisePathEqualsTheScalarReference)
+{
+  std::mt19937_64 rng(5);
+  for (int bits : {64, 128, 256, 512})
+    for (size_t count : {size_t(0), size_t(1), size_t(7), size_t(8), size_t(9), size_t(16), size_t(45), size_t(451)})
+    {
+      const int words = bits / 64;
+      std::vector<uint64_t> a = randomWords(words * count, rng), b = randomWords(words * count, rng);
+      if (count > 2)
+      {
+        std::fill(b.begin(), b.begin() + words, 0);  // the extremes: nothing and every bit differs
+        std::fill(a.begin(), a.begin() + words, 0);
+        for (int w = 0; w < words; ++w)
+          b[words + w] = ~a[words + w];
+      }
+      std::vector<uint16_t> expected(count), got(count);
+      for (size_t i = 0; i < count; ++i)
+        expected[i] = static_cast<uint16_t>(hammingDistanceReference(a.data() + i * words, b.data() + i * words, words));
+      for (HammingPath p : availableHammingPaths())
+      {
+        std::fill(got.begin(), got.end(), 0xFFFF);
+        hammingDistancesPairwise(p, a.data(), b.data(), count, words, got.data());
+        EXPECT_EQ(got, expected) << toString(p) << " bits " << bits << " count " << count;
+      }
+    }
+  const uint64_t x[3] = {1, 2, 3};
+  uint16_t out[1];
+  EXPECT_THROW(hammingDistancesPairwise(HammingPath::Scalar, x, x, 1, 3, out), std::invalid_argument);
+}
+
 TEST(HammingDistance, RefusesUnsupportedLengths)
 {
   const uint64_t a[3] = {1, 2, 3};

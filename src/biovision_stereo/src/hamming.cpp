@@ -1,45 +1,29 @@
 #include "biovision_stereo/hamming.hpp"
 
+#include <algorithm>
+
 #include "biovision_common/bit_count.hpp"
-#include "biovision_common/cpu_features.hpp"
 
 namespace biovision_stereo
 {
-namespace
+void Hamming::row(const PixelDescriptor* a, const PixelDescriptor* b, int width, int shift, float missing, float* out,
+                  biovision_common::HammingPath path)
 {
-__attribute__((target("popcnt"))) void rowPopcnt(const PixelDescriptor* a, const PixelDescriptor* b, int width,
-                                                 int shift, float missing, float* out)
-{
+  static_assert(sizeof(PixelDescriptor) == 4 * sizeof(std::uint64_t), "256-bit descriptors without padding");
   int x = 0;
   for (; x < shift && x < width; ++x)
     out[x] = missing;
-  for (; x < width; ++x)
+  // Counts into a small stack buffer (the shared SIMD kernels write 16-bit counts), then to float.
+  constexpr int kChunk = 256;
+  std::uint16_t counts[kChunk];
+  while (x < width)
   {
-    const auto& p = a[x].words;
-    const auto& q = b[x - shift].words;
-    out[x] = static_cast<float>(__builtin_popcountll(p[0] ^ q[0]) + __builtin_popcountll(p[1] ^ q[1]) +
-                                __builtin_popcountll(p[2] ^ q[2]) + __builtin_popcountll(p[3] ^ q[3]));
+    const int n = std::min(kChunk, width - x);
+    biovision_common::hammingDistancesPairwise(path, a[x].words.data(), b[x - shift].words.data(), n, 4, counts);
+    for (int i = 0; i < n; ++i)
+      out[x + i] = static_cast<float>(counts[i]);
+    x += n;
   }
-}
-
-void rowScalar(const PixelDescriptor* a, const PixelDescriptor* b, int width, int shift, float missing, float* out)
-{
-  int x = 0;
-  for (; x < shift && x < width; ++x)
-    out[x] = missing;
-  for (; x < width; ++x)
-    out[x] = static_cast<float>(Hamming::distanceScalar(a[x], b[x - shift]));
-}
-
-const bool kHasPopcnt = biovision_common::CpuFeatures::host().popcnt;
-}  // namespace
-
-void Hamming::row(const PixelDescriptor* a, const PixelDescriptor* b, int width, int shift, float missing, float* out)
-{
-  if (kHasPopcnt)
-    rowPopcnt(a, b, width, shift, missing, out);
-  else
-    rowScalar(a, b, width, shift, missing, out);
 }
 
 int Hamming::distance(const PixelDescriptor& a, const PixelDescriptor& b)
@@ -57,8 +41,8 @@ int Hamming::distanceScalar(const PixelDescriptor& a, const PixelDescriptor& b)
   return n;
 }
 
-bool Hamming::usesPopcnt()
+std::string Hamming::pathName()
 {
-  return kHasPopcnt;
+  return biovision_common::toString(biovision_common::bestHammingPath());
 }
 }  // namespace biovision_stereo

@@ -213,6 +213,19 @@ TEST(Hamming, EveryPathEqualsTheScalarReference)
   EXPECT_EQ(row[2], 999.f);
   for (int x = 3; x < 64; ++x)
     EXPECT_EQ(row[x], Hamming::distanceScalar(a[x], b[x - 3]));
+  // A row longer than row()'s 256-pixel chunk, with a shift that leaves SIMD tails in both chunks.
+  std::vector<PixelDescriptor> c(601), e(601);
+  for (size_t i = 0; i < c.size(); ++i)
+    for (int w = 0; w < 4; ++w)
+    {
+      c[i].words[w] = rng();
+      e[i].words[w] = rng();
+    }
+  std::vector<float> long_row(c.size());
+  Hamming::row(c.data(), e.data(), static_cast<int>(c.size()), 37, 999.f, long_row.data());
+  for (int x = 0; x < static_cast<int>(c.size()); ++x)
+    ASSERT_EQ(long_row[x], x < 37 ? 999.f : Hamming::distanceScalar(c[x], e[x - 37])) << "x " << x;
+  EXPECT_FALSE(Hamming::pathName().empty());
 }
 
 TEST(DisparityDog, RecursiveBroadGaussianMatchesTheExactFir)

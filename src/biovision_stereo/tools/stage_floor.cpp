@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <iostream>
+#include <map>
 
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/utility.hpp>
@@ -27,7 +28,8 @@ namespace
 {
 const char* kDescription =
     "Per scene, same run: sgbm_ms (MODE_SGBM_3WAY, whole), odd_cells_ms (BioBin's odd cells, 2 images, every level),\n"
-    "hamming_ms (finest level's 256-bit cost volume alone), bm_fast_ms (StereoBM at quarter size incl. resize,\n"
+    "hamming_ms (finest level's 256-bit cost volume alone, on the path BioBin uses; hamming_ms_<path> on every\n"
+    "Hamming path this CPU runs), bm_fast_ms (StereoBM at quarter size incl. resize,\n"
     "whole), fast_cells_ms (the fast mode's odd cells alone, 2 images). Prints the JSON.";
 
 template <class F>
@@ -77,6 +79,7 @@ int main(int argc, char** argv)
   const BioBinParameters defaults;
   nlohmann::ordered_json scenes = nlohmann::ordered_json::object();
   double sum_sgbm = 0, sum_cells = 0, sum_ham = 0, sum_bm = 0, sum_fast = 0;
+  std::map<std::string, double> sum_ham_by_path;
   int n = 0;
   try
   {
@@ -124,17 +127,28 @@ int main(int argc, char** argv)
       biovision_v1::SimpleCellBank bank(gabor);
       const auto codes_l = PixelDescriptorImage::compute(bank.computeOdd(unitGray(s.left, gl.size()))[0]);
       const auto codes_r = PixelDescriptorImage::compute(bank.computeOdd(unitGray(s.right, gl.size()))[0]);
-      const double t_ham = milliseconds(
-          [&] {
-            cv::parallel_for_(cv::Range(0, gl.rows), [&](const cv::Range& rows) {
-              std::vector<float> out(gl.cols);
-              for (int y = rows.start; y < rows.end; ++y)
-                for (int k = 0; k < nd; ++k)
-                  Hamming::row(codes_l.row(y), codes_r.row(y), gl.cols, k, 256.f, out.data());
-            });
-          },
-          repeats);
+      // The volume on every Hamming path this CPU runs; hamming_ms is the one BioBin uses (the best).
+      nlohmann::ordered_json by_path = nlohmann::ordered_json::object();
+      double t_ham = 0;
+      for (const auto path : biovision_common::availableHammingPaths())
+      {
+        const double t = milliseconds(
+            [&] {
+              cv::parallel_for_(cv::Range(0, gl.rows), [&](const cv::Range& rows) {
+                std::vector<float> out(gl.cols);
+                for (int y = rows.start; y < rows.end; ++y)
+                  for (int k = 0; k < nd; ++k)
+                    Hamming::row(codes_l.row(y), codes_r.row(y), gl.cols, k, 256.f, out.data(), path);
+              });
+            },
+            repeats);
+        by_path[biovision_common::toString(path)] = t;
+        sum_ham_by_path[biovision_common::toString(path)] += t;
+        if (path == biovision_common::bestHammingPath())
+          t_ham = t;
+      }
       scenes[s.name] = stageTimes(t_sgbm, t_cells, t_ham, t_bm, t_fast);
+      scenes[s.name]["hamming_ms_by_path"] = by_path;
       std::cerr << s.name << ": sgbm " << t_sgbm << " ms, odd cells " << t_cells << " ms, hamming " << t_ham
                 << " ms | bm_fast " << t_bm << " ms, fast-mode cells " << t_fast << " ms\n";
       sum_sgbm += t_sgbm, sum_cells += t_cells, sum_ham += t_ham, sum_bm += t_bm, sum_fast += t_fast;
@@ -154,7 +168,12 @@ int main(int argc, char** argv)
   nlohmann::ordered_json figures;
   figures["command"] = "rosrun biovision_stereo stage_floor " + options.command();
   figures["mean"] = stageTimes(sum_sgbm / n, sum_cells / n, sum_ham / n, sum_bm / n, sum_fast / n);
+  figures["hamming_path"] = Hamming::pathName();
+  for (const auto& [path, sum] : sum_ham_by_path)
+    figures["mean"]["hamming_ms_" + path] = sum / n;
   figures["ratios"] = {{"odd_cells_vs_sgbm", sum_cells / sum_sgbm}, {"fast_cells_vs_bm_fast", sum_fast / sum_bm}};
+  if (sum_ham_by_path.count("popcnt"))
+    figures["ratios"]["hamming_best_vs_popcnt"] = sum_ham / sum_ham_by_path["popcnt"];
   figures["notes"] = "Ratios > 1: the mandated stage alone takes longer than the peer's whole computation.";
   figures["scenes"] = scenes;
   std::cout << figures.dump(2) << "\n";

@@ -27,6 +27,14 @@ HammingPath bestHammingPath();
 void hammingDistances(HammingPath path, const uint64_t* query, const uint64_t* codes, size_t count, int words,
                       uint16_t* out);
 
+/// Element-wise distances of two runs of `count` codes of `words` 64-bit words each (1, 2, 4 or 8):
+/// out[i] = popcount(a[i] XOR b[i]). BioBin's cost volume is this: one image row of 256-bit pixel descriptors
+/// against the other row shifted by a disparity (thesis §4.4.2). The SIMD paths have a vector loop for 4-word
+/// codes (8 codes per step, no scalar reduction); other lengths and the tail run the POPCNT loop.
+/// Throws std::invalid_argument when `path` is not available or `words` is not one of the above.
+void hammingDistancesPairwise(HammingPath path, const uint64_t* a, const uint64_t* b, size_t count, int words,
+                              uint16_t* out);
+
 /// One distance, scalar reference.
 int hammingDistanceReference(const uint64_t* a, const uint64_t* b, int words);
 }  // namespace biovision_common

@@ -1,22 +1,28 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
+#include "biovision_common/hamming_distance.hpp"
 #include "biovision_stereo/pixel_descriptor.hpp"
 
 namespace biovision_stereo
 {
-/// Hamming distance of 256-bit descriptors. The POPCNT instruction is used when the CPU has it
-/// (checked once at run time, so the binary stays portable without -march=native).
+/// Hamming distance of 256-bit descriptors. The rows run on biovision_common's fastest Hamming path for this
+/// CPU (AVX-512 VPOPCNTDQ, AVX2 nibble look-up, POPCNT or the scalar count; chosen once at run time, so the
+/// binary stays portable without -march=native).
 class Hamming
 {
 public:
   /// Row of costs: out[x] = distance(a[x], b[x - shift]) for x >= shift, `missing` for x < shift.
-  static void row(const PixelDescriptor* a, const PixelDescriptor* b, int width, int shift, float missing, float* out);
+  /// Runs on bestHammingPath() unless `path` is given (benchmarks compare the paths); throws
+  /// std::invalid_argument when this CPU cannot run `path`.
+  static void row(const PixelDescriptor* a, const PixelDescriptor* b, int width, int shift, float missing, float* out,
+                  biovision_common::HammingPath path = biovision_common::bestHammingPath());
   static int distance(const PixelDescriptor& a, const PixelDescriptor& b);
   /// Portable bit-counting reference (no POPCNT): for tests.
   static int distanceScalar(const PixelDescriptor& a, const PixelDescriptor& b);
-  /// True when the POPCNT path is in use.
-  static bool usesPopcnt();
+  /// The path row() runs on ("avx512-vpopcntdq", "avx2", "popcnt" or "scalar"), for benchmark reports.
+  static std::string pathName();
 };
 }  // namespace biovision_stereo

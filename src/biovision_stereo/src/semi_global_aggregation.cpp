@@ -18,7 +18,8 @@ constexpr std::uint16_t kBlocked = 0xFFFF;  // lanes outside 0..disparities-1: n
 constexpr int kGuard = 16;                  // blocked values before and after every path buffer
 
 /// One path step at one pixel: out[d] = c[d] + min(prev[d], prev[d-1] + P1, prev[d+1] + P1, prev_min + P2)
-/// - prev_min for d < nd, kBlocked above; sum[d] += out[d] (saturating). prev[-1] and prev[stride] must be
+/// - prev_min for d < nd, kBlocked above; sum[d] += out[d] (saturating), or sum[d] = out[d] for the first
+/// path of a sweep at a pixel (`first`: no zero-fill of the sums). prev[-1] and prev[stride] must be
 /// readable and kBlocked (or a blocked lane of a neighbour). Returns the minimum of out over 0..nd-1.
 struct Step
 {
@@ -27,7 +28,8 @@ struct Step
 };
 
 inline std::uint16_t stepGeneric(const Step& s, const std::uint16_t* c, const std::uint16_t* prev,
-                                 std::uint16_t prev_min, std::uint16_t p2, std::uint16_t* out, std::uint16_t* sum)
+                                 std::uint16_t prev_min, std::uint16_t p2, std::uint16_t* out, std::uint16_t* sum,
+                                 bool first)
 {
   const std::uint32_t jump = std::uint32_t(prev_min) + p2;
   std::uint16_t m = kBlocked;
@@ -38,7 +40,7 @@ inline std::uint16_t stepGeneric(const Step& s, const std::uint16_t* c, const st
     const auto l = static_cast<std::uint16_t>(c[d] + v - prev_min);
     out[d] = l;
     m = std::min(m, l);
-    sum[d] = static_cast<std::uint16_t>(std::min<std::uint32_t>(std::uint32_t(sum[d]) + l, kBlocked));
+    sum[d] = first ? l : static_cast<std::uint16_t>(std::min<std::uint32_t>(std::uint32_t(sum[d]) + l, kBlocked));
   }
   for (int d = s.nd; d < s.stride; ++d)
   {
@@ -50,7 +52,8 @@ inline std::uint16_t stepGeneric(const Step& s, const std::uint16_t* c, const st
 
 __attribute__((target("avx2"))) inline std::uint16_t stepAvx2(const Step& s, const std::uint16_t* c,
                                                               const std::uint16_t* prev, std::uint16_t prev_min,
-                                                              std::uint16_t p2, std::uint16_t* out, std::uint16_t* sum)
+                                                              std::uint16_t p2, std::uint16_t* out, std::uint16_t* sum,
+                                                              bool first)
 {
   const __m256i vp1 = _mm256_set1_epi16(static_cast<short>(s.p1));
   const __m256i vjump = _mm256_set1_epi16(static_cast<short>(prev_min + p2));
@@ -73,7 +76,7 @@ __attribute__((target("avx2"))) inline std::uint16_t stepAvx2(const Step& s, con
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + d), l);
     m = _mm256_min_epu16(m, l);
     __m256i* sp = reinterpret_cast<__m256i*>(sum + d);
-    _mm256_storeu_si256(sp, _mm256_adds_epu16(_mm256_loadu_si256(sp), l));
+    _mm256_storeu_si256(sp, first ? l : _mm256_adds_epu16(_mm256_loadu_si256(sp), l));
   }
   const __m128i m8 = _mm_min_epu16(_mm256_castsi256_si128(m), _mm256_extracti128_si256(m, 1));
   return static_cast<std::uint16_t>(_mm_cvtsi128_si32(_mm_minpos_epu16(m8)) & 0xFFFF);
@@ -100,13 +103,14 @@ void sweep(const std::vector<std::uint16_t>& costs, int w, int h, int nd, const 
            int p2_barrier, int paths, bool backward, std::vector<std::uint16_t>& sums)
 {
   const auto step = [](const Step& s, const std::uint16_t* c, const std::uint16_t* prev, std::uint16_t prev_min,
-                       std::uint16_t p2, std::uint16_t* out, std::uint16_t* sum) {
-    return kAvx2 ? stepAvx2(s, c, prev, prev_min, p2, out, sum) : stepGeneric(s, c, prev, prev_min, p2, out, sum);
+                       std::uint16_t p2, std::uint16_t* out, std::uint16_t* sum, bool first) {
+    return kAvx2 ? stepAvx2(s, c, prev, prev_min, p2, out, sum, first)
+                 : stepGeneric(s, c, prev, prev_min, p2, out, sum, first);
   };
   const int stride = SemiGlobalAggregation::stride(nd);
   const Step s{nd, stride, static_cast<std::uint16_t>(p1)};
   const auto p2_edge = static_cast<std::uint16_t>(std::max(p1, p2_barrier));
-  sums.assign(size_t(w) * h * stride, 0);
+  sums.resize(size_t(w) * h * stride);  // every value is stored by the first path step below
   // The predecessor of a path's first pixel: zero costs, so that L = C there.
   PathRow start(1, stride);
   std::fill(start.at(0), start.at(0) + nd, 0);
@@ -126,19 +130,20 @@ void sweep(const std::vector<std::uint16_t>& costs, int w, int h, int nd, const 
       const std::uint16_t* c = costs.data() + index;
       std::uint16_t* sum = sums.data() + index;
       const std::uint16_t pen2 = barrier_row && barrier_row[x] ? p2_edge : static_cast<std::uint16_t>(p2);
-      // Along the row (ping-pong between two buffers: a step must not overwrite its predecessor).
+      // Along the row (ping-pong between two buffers: a step must not overwrite its predecessor); the
+      // sweep's first path at this pixel, so it stores the sum.
       std::uint16_t* hout = horizontal.at(j & 1);
       if (j == 0)
-        horizontal.minAt(0) = step(s, c, start.at(0), 0, pen2, hout, sum);
+        horizontal.minAt(0) = step(s, c, start.at(0), 0, pen2, hout, sum, true);
       else
-        horizontal.minAt(0) = step(s, c, horizontal.at((j - 1) & 1), horizontal.minAt(0), pen2, hout, sum);
+        horizontal.minAt(0) = step(s, c, horizontal.at((j - 1) & 1), horizontal.minAt(0), pen2, hout, sum, true);
       // From the previous row: predecessor columns x - dir (diagonal), x, x + dir (other diagonal).
       for (int v = 0; v < vertical; ++v)
       {
         const int qx = x + (vertical == 3 ? (v - 1) * dir : 0);
         const bool first = i == 0 || qx < 0 || qx >= w;
-        cur[v].minAt(x) = first ? step(s, c, start.at(0), 0, pen2, cur[v].at(x), sum)
-                                : step(s, c, prev[v].at(qx), prev[v].minAt(qx), pen2, cur[v].at(x), sum);
+        cur[v].minAt(x) = first ? step(s, c, start.at(0), 0, pen2, cur[v].at(x), sum, false)
+                                : step(s, c, prev[v].at(qx), prev[v].minAt(qx), pen2, cur[v].at(x), sum, false);
       }
     }
     std::swap(prev, cur);

@@ -430,7 +430,8 @@ TEST(SemiGlobalAggregation, EveryPathEqualsTheBruteForceReference)
       std::vector<std::uint16_t> first_forward, first_backward;
       for (const auto simd : simds)
       {
-        std::vector<std::uint16_t> forward, backward;
+        // Sums of another size's last call: aggregate() must overwrite them, not add to them.
+        std::vector<std::uint16_t> forward(costs.size() + 5, 0x1234), backward(costs.size() - 3, 0x4321);
         sgm.aggregate(costs, w, h, nd, barriers, forward, backward, simd);
         ASSERT_EQ(forward.size(), costs.size());
         int wrong = 0;

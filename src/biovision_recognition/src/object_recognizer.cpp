@@ -74,6 +74,7 @@ std::vector<RecognizedObject> ObjectRecognizer::recognize(const cv::Mat& gray,
 {
   const auto start = std::chrono::steady_clock::now();
   Statistics stats;
+  const long spectra_before = pyramid_.kernelSpectraBuilt();
   std::vector<RecognizedObject> found;
   const cv::Rect image(0, 0, gray.cols, gray.rows);
   std::vector<SearchRegion> regions = regions_in;
@@ -151,6 +152,7 @@ std::vector<RecognizedObject> ObjectRecognizer::recognize(const cv::Mat& gray,
     if (!best.label.empty())
       found.push_back(best);
   }
+  stats.kernel_spectra_built = pyramid_.kernelSpectraBuilt() - spectra_before;
   stats.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (statistics)
     *statistics = stats;

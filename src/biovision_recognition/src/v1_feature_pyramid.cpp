@@ -39,6 +39,14 @@ int V1FeaturePyramid::levelOfWavelength(double wavelength)
   return std::max(0, static_cast<int>(std::lround(2.0 * std::log2(wavelength / kWavelength))));
 }
 
+long V1FeaturePyramid::kernelSpectraBuilt() const
+{
+  long n = 0;
+  for (const auto& bank : banks_)
+    n += bank.plansBuilt();
+  return n;
+}
+
 double V1FeaturePyramid::poolingCentreOffset() const
 {
   // cv::dilate anchors a d x d element at (d/2, d/2): the disk's centre sits (d - 1)/2 - d/2 px from it.
@@ -93,7 +101,10 @@ void V1FeaturePyramid::build(const cv::Mat& gray)
   gabor.support_sigmas = parameters_.support_sigmas;
   gabor.min_grid_wavelength = 0.0;  // full resolution on every level: pooling needs every pixel
   while (banks_.size() < images.size())
+  {
     banks_.emplace_back(gabor);
+    banks_.back().setCoarseDftSizes(parameters_.coarse_dft_sizes);
+  }
 
   levels_.resize(images.size());
   for (size_t k = 0; k < images.size(); ++k)

@@ -74,6 +74,16 @@ SimpleCellBank::SimpleCellBank(const GaborParameters& parameters) : parameters_(
   parameters_.validate();
 }
 
+int SimpleCellBank::dftLength(int n, bool coarse)
+{
+  if (!coarse || n <= 8 || n > (1 << 26))
+    return cv::getOptimalDFTSize(n);
+  for (int scale = 1;; scale *= 2)
+    for (int m : {8, 10, 12, 15})
+      if (m * scale >= n)
+        return m * scale;
+}
+
 void SimpleCellBank::plan(const cv::Size& image_size, bool odd_pairs)
 {
   ++uses_;
@@ -88,8 +98,8 @@ void SimpleCellBank::plan(const cv::Size& image_size, bool odd_pairs)
     const int d = p.decimation;
     p.padding = roundUp(parameters_.radius(wavelength), d);
     // The grid DFT (padded / d) gets an efficient size; the full-resolution DFT is d times that.
-    p.padded.width = d * cv::getOptimalDFTSize((image_size.width + 2 * p.padding + d - 1) / d);
-    p.padded.height = d * cv::getOptimalDFTSize((image_size.height + 2 * p.padding + d - 1) / d);
+    p.padded.width = d * dftLength((image_size.width + 2 * p.padding + d - 1) / d, coarse_dft_sizes_);
+    p.padded.height = d * dftLength((image_size.height + 2 * p.padding + d - 1) / d, coarse_dft_sizes_);
     p.spectrum_source = static_cast<int>(plans.size());
     plans.push_back(std::move(p));
   }

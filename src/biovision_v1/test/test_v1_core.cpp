@@ -339,6 +339,46 @@ TEST(SimpleCellBank, ReusesCachedKernelSpectraAcrossSizesOfOneDftSize)
   EXPECT_EQ(bank.plansBuilt(), 2 + SimpleCellBank::kPlanCacheSize);
 }
 
+TEST(SimpleCellBank, CoarseDftSizesCollapseChangingSizesAndKeepTheResponses)
+{
+  // The lengths: 2^a * {8, 10, 12, 15}, at least n, and the smallest such.
+  for (int n = 1; n <= 2000; ++n)
+  {
+    const int len = SimpleCellBank::dftLength(n, true);
+    ASSERT_GE(len, n);
+    if (n > 8)
+    {
+      int m = len;
+      while (m % 2 == 0 && m > 15)
+        m /= 2;
+      ASSERT_TRUE(m == 8 || m == 10 || m == 12 || m == 15) << n << " -> " << len;
+      ASSERT_LE(len, n * 1.25 + 1) << n;  // four lengths per octave
+    }
+    ASSERT_EQ(SimpleCellBank::dftLength(n, false), cv::getOptimalDFTSize(n));
+  }
+  GaborParameters p;
+  p.wavelengths = {4, 8};
+  SimpleCellBank exact(p), coarse(p);
+  coarse.setCoarseDftSizes(true);
+  EXPECT_FALSE(exact.coarseDftSizes());
+  // Crops of 20 sizes between 70 and 89 px (a salient region that grows): the default bank rebuilds its
+  // kernel spectra for most of them, the coarse one for a few, with the same responses.
+  for (int k = 0; k < 20; ++k)
+  {
+    const cv::Mat crop = texture(70 + k, 89 - k, 10 + k);
+    const auto a = exact.compute(crop);
+    const auto b = coarse.compute(crop);
+    if (k % 5 == 0)  // against the direct convolution, as the default bank is
+    {
+      const auto ref = DirectGaborBank(p).compute(crop);
+      ASSERT_LT(DirectGaborBank::maxRelativeError(a, ref), 1e-4) << k;
+      ASSERT_LT(DirectGaborBank::maxRelativeError(b, ref), 1e-4) << k;
+    }
+  }
+  EXPECT_LE(coarse.plansBuilt(), 4);
+  EXPECT_GE(exact.plansBuilt(), 2 * coarse.plansBuilt());
+}
+
 TEST(SimpleCellBank, OddPairBuffersAreReusedOnlyOnceTheCallerLetsGo)
 {
   GaborParameters p;

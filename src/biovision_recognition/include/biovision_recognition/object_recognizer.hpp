@@ -59,6 +59,7 @@ public:
     int regions_processed = 0;
     int regions_skipped = 0;  ///< too small, empty, or over the time budget
     int keypoints = 0;
+    long kernel_spectra_built = 0;  ///< V1 kernel spectra sets built for new region sizes (cache misses)
     double milliseconds = 0.0;
   };
 

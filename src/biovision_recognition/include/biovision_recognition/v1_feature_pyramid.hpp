@@ -34,6 +34,9 @@ public:
     int min_level_size = 12;   ///< stop when a level's smaller side drops below this [px]
     int pooling_diameter = 4;  ///< disk the pooled maps take the maximum over [level px]. 1..16
     int pooling_phases = 4;    ///< 2: max of the signed even/odd responses; 4: also max of their negatives
+    /// Levels' DFTs on SimpleCellBank's coarse sizes: region crops change size every call, and each new
+    /// size rebuilt the kernel spectra (2.5 sets per region in loop_bench). Same responses up to rounding.
+    bool coarse_dft_sizes = true;
     biovision_v1::KeypointDetector::Parameters keypoints;
   };
 
@@ -72,6 +75,10 @@ public:
   std::vector<biovision_v1::Keypoint> detectKeypoints(const std::vector<int>& levels) const;
 
   const Parameters& parameters() const { return parameters_; }
+
+  /// Kernel spectra sets the levels' banks have built so far (SimpleCellBank::plansBuilt() summed): a
+  /// region size whose DFT sizes are cached builds none.
+  long kernelSpectraBuilt() const;
 
 private:
   struct Level

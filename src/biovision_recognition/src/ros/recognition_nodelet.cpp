@@ -207,6 +207,8 @@ void RecognitionNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
     try
     {
       found = recognizer_->recognize(gray, regions, *memory_, &last_stats_);
+      regions_total_ += last_stats_.regions_processed;
+      spectra_built_total_ += last_stats_.kernel_spectra_built;
     }
     catch (const std::exception& ex)
     {
@@ -425,6 +427,8 @@ void RecognitionNodelet::details(diagnostic_updater::DiagnosticStatusWrapper& s)
   s.add("last regions processed", last_stats_.regions_processed);
   s.add("last regions skipped", last_stats_.regions_skipped);
   s.add("last keypoints", last_stats_.keypoints);
+  s.add("last kernel spectra built", last_stats_.kernel_spectra_built);
+  s.add("kernel spectra built per region", regions_total_ ? double(spectra_built_total_) / regions_total_ : 0.0);
   s.add("last recognition time [ms]", last_stats_.milliseconds);
   s.add("last objects", last_objects_);
 }

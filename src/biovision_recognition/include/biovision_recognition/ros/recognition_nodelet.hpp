@@ -82,6 +82,7 @@ private:
   std::unique_ptr<dynamic_reconfigure::Server<RecognitionConfig>> reconfigure_server_;
   biovision_ros_common::NodeletDiagnostics diagnostics_;
   ObjectRecognizer::Statistics last_stats_;
+  long regions_total_ = 0, spectra_built_total_ = 0;  // since start: how often a region size missed the cache
   size_t last_objects_ = 0;
   std::string model_id_;
 };

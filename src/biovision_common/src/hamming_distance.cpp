@@ -6,6 +6,7 @@
 #include <immintrin.h>
 
 #include <stdexcept>
+#include <type_traits>
 
 #include "biovision_common/bit_count.hpp"
 #include "biovision_common/cpu_features.hpp"
@@ -192,20 +193,23 @@ __attribute__((target("avx512f,avx512vpopcntdq,popcnt"))) void avx512Distances(c
     popcntDistances(q, c + i * words, count - i, words, out + i);
 }
 
-void scalarPairwise(const uint64_t* a, const uint64_t* b, size_t count, int words, uint16_t* out)
+// The pairwise kernels write 16-bit counts or the same counts as floats (a stereo cost volume's type).
+template <class T>
+void scalarPairwise(const uint64_t* a, const uint64_t* b, size_t count, int words, T* out)
 {
   for (size_t i = 0; i < count; ++i, a += words, b += words)
-    out[i] = static_cast<uint16_t>(hammingDistanceReference(a, b, words));
+    out[i] = static_cast<T>(hammingDistanceReference(a, b, words));
 }
 
+template <class T>
 __attribute__((target("popcnt"))) void popcntPairwise(const uint64_t* a, const uint64_t* b, size_t count, int words,
-                                                      uint16_t* out)
+                                                      T* out)
 {
   if (words == 4)  // unrolled: the stereo cost volume's case
   {
     for (size_t i = 0; i < count; ++i, a += 4, b += 4)
-      out[i] = static_cast<uint16_t>(_mm_popcnt_u64(a[0] ^ b[0]) + _mm_popcnt_u64(a[1] ^ b[1]) +
-                                     _mm_popcnt_u64(a[2] ^ b[2]) + _mm_popcnt_u64(a[3] ^ b[3]));
+      out[i] = static_cast<T>(_mm_popcnt_u64(a[0] ^ b[0]) + _mm_popcnt_u64(a[1] ^ b[1]) +
+                              _mm_popcnt_u64(a[2] ^ b[2]) + _mm_popcnt_u64(a[3] ^ b[3]));
     return;
   }
   for (size_t i = 0; i < count; ++i, a += words, b += words)
@@ -213,13 +217,14 @@ __attribute__((target("popcnt"))) void popcntPairwise(const uint64_t* a, const u
     uint64_t d = 0;
     for (int w = 0; w < words; ++w)
       d += _mm_popcnt_u64(a[w] ^ b[w]);
-    out[i] = static_cast<uint16_t>(d);
+    out[i] = static_cast<T>(d);
   }
 }
 
 // 8 pairs of 256-bit codes: per-64-bit-lane counts (SAD of the byte counts), then packus + madd add each
 // code's halves and narrow to 16 bits, as sixteen128 does; one 128-bit add joins the halves of the lanes.
-__attribute__((target("avx2"))) inline void eight256Pairwise(const uint64_t* a, const uint64_t* b, uint16_t* out)
+// Returns the 8 counts as 32-bit lanes, in order.
+__attribute__((target("avx2"))) inline __m256i eight256Pairwise(const uint64_t* a, const uint64_t* b)
 {
   const __m256i zero = _mm256_setzero_si256(), ones = _mm256_set1_epi16(1);
   const __m256i* pa = reinterpret_cast<const __m256i*>(a);
@@ -234,25 +239,36 @@ __attribute__((target("avx2"))) inline void eight256Pairwise(const uint64_t* a, 
       _mm256_packus_epi32(_mm256_packus_epi32(s[0], s[1]), _mm256_packus_epi32(s[2], s[3])), ones);
   const __m256i hi = _mm256_madd_epi16(
       _mm256_packus_epi32(_mm256_packus_epi32(s[4], s[5]), _mm256_packus_epi32(s[6], s[7])), ones);
-  const __m256i sum = _mm256_add_epi32(_mm256_permute2x128_si256(lo, hi, 0x20),
-                                       _mm256_permute2x128_si256(lo, hi, 0x31));  // [c0..c3 | c4..c7]
-  const __m256i packed = _mm256_permute4x64_epi64(_mm256_packus_epi32(sum, sum), 0x08);
+  return _mm256_add_epi32(_mm256_permute2x128_si256(lo, hi, 0x20),
+                          _mm256_permute2x128_si256(lo, hi, 0x31));  // [c0..c3 | c4..c7]
+}
+
+__attribute__((target("avx2"))) inline void storeCounts(__m256i counts32, uint16_t* out)
+{
+  const __m256i packed = _mm256_permute4x64_epi64(_mm256_packus_epi32(counts32, counts32), 0x08);
   _mm_storeu_si128(reinterpret_cast<__m128i*>(out), _mm256_castsi256_si128(packed));
 }
 
+__attribute__((target("avx2"))) inline void storeCounts(__m256i counts32, float* out)
+{
+  _mm256_storeu_ps(out, _mm256_cvtepi32_ps(counts32));
+}
+
+template <class T>
 __attribute__((target("avx2,popcnt"))) void avx2Pairwise(const uint64_t* a, const uint64_t* b, size_t count, int words,
-                                                         uint16_t* out)
+                                                         T* out)
 {
   size_t i = 0;
   if (words == 4)
     for (; i + 8 <= count; i += 8)
-      eight256Pairwise(a + 4 * i, b + 4 * i, out + i);
+      storeCounts(eight256Pairwise(a + 4 * i, b + 4 * i), out + i);
   if (i < count)
     popcntPairwise(a + i * words, b + i * words, count - i, words, out + i);
 }
 
+template <class T>
 __attribute__((target("avx512f,avx512vpopcntdq,popcnt"))) void avx512Pairwise(const uint64_t* a, const uint64_t* b,
-                                                                              size_t count, int words, uint16_t* out)
+                                                                              size_t count, int words, T* out)
 {
   size_t i = 0;
   if (words == 4)
@@ -272,7 +288,10 @@ __attribute__((target("avx512f,avx512vpopcntdq,popcnt"))) void avx512Pairwise(co
                                          _mm512_permutex2var_epi64(p[2], odd, p[3]));  // c4..c7
       const __m512i sum =
           _mm512_add_epi64(_mm512_permutex2var_epi64(e, even, f), _mm512_permutex2var_epi64(e, odd, f));
-      _mm_storeu_si128(reinterpret_cast<__m128i*>(out + i), _mm512_cvtepi64_epi16(sum));
+      if constexpr (std::is_same_v<T, float>)
+        _mm256_storeu_ps(out + i, _mm256_cvtepi32_ps(_mm512_cvtepi64_epi32(sum)));
+      else
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(out + i), _mm512_cvtepi64_epi16(sum));
     }
   }
   if (i < count)
@@ -335,8 +354,10 @@ int hammingDistanceReference(const uint64_t* a, const uint64_t* b, int words)
   return d;
 }
 
-void hammingDistancesPairwise(HammingPath path, const uint64_t* a, const uint64_t* b, size_t count, int words,
-                              uint16_t* out)
+namespace
+{
+template <class T>
+void pairwise(HammingPath path, const uint64_t* a, const uint64_t* b, size_t count, int words, T* out)
 {
   if (words != 1 && words != 2 && words != 4 && words != 8)
     throw std::invalid_argument("hammingDistancesPairwise: words must be 1, 2, 4 or 8");
@@ -353,6 +374,19 @@ void hammingDistancesPairwise(HammingPath path, const uint64_t* a, const uint64_
     case HammingPath::Avx512:
       return avx512Pairwise(a, b, count, words, out);
   }
+}
+}  // namespace
+
+void hammingDistancesPairwise(HammingPath path, const uint64_t* a, const uint64_t* b, size_t count, int words,
+                              uint16_t* out)
+{
+  pairwise(path, a, b, count, words, out);
+}
+
+void hammingDistancesPairwise(HammingPath path, const uint64_t* a, const uint64_t* b, size_t count, int words,
+                              float* out)
+{
+  pairwise(path, a, b, count, words, out);
 }
 
 void hammingDistances(HammingPath path, const uint64_t* query, const uint64_t* codes, size_t count, int words,

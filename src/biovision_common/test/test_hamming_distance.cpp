@@ -99,6 +99,10 @@ TEST(HammingDistance, EveryAvailablePairwisePathEqualsTheScalarReference)
         std::fill(got.begin(), got.end(), 0xFFFF);
         hammingDistancesPairwise(p, a.data(), b.data(), count, words, got.data());
         EXPECT_EQ(got, expected) << toString(p) << " bits " << bits << " count " << count;
+        std::vector<float> as_float(count, -1.f);
+        hammingDistancesPairwise(p, a.data(), b.data(), count, words, as_float.data());
+        for (size_t i = 0; i < count; ++i)
+          ASSERT_EQ(as_float[i], float(expected[i])) << toString(p) << " bits " << bits << " float, code " << i;
       }
     }
   const uint64_t x[3] = {1, 2, 3};

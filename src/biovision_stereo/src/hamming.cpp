@@ -1,7 +1,5 @@
 #include "biovision_stereo/hamming.hpp"
 
-#include <algorithm>
-
 #include "biovision_common/bit_count.hpp"
 
 namespace biovision_stereo
@@ -13,17 +11,9 @@ void Hamming::row(const PixelDescriptor* a, const PixelDescriptor* b, int width,
   int x = 0;
   for (; x < shift && x < width; ++x)
     out[x] = missing;
-  // Counts into a small stack buffer (the shared SIMD kernels write 16-bit counts), then to float.
-  constexpr int kChunk = 256;
-  std::uint16_t counts[kChunk];
-  while (x < width)
-  {
-    const int n = std::min(kChunk, width - x);
-    biovision_common::hammingDistancesPairwise(path, a[x].words.data(), b[x - shift].words.data(), n, 4, counts);
-    for (int i = 0; i < n; ++i)
-      out[x + i] = static_cast<float>(counts[i]);
-    x += n;
-  }
+  if (x < width)
+    biovision_common::hammingDistancesPairwise(path, a[x].words.data(), b[x - shift].words.data(),
+                                               static_cast<size_t>(width - x), 4, out + x);
 }
 
 int Hamming::distance(const PixelDescriptor& a, const PixelDescriptor& b)

@@ -213,7 +213,7 @@ TEST(Hamming, EveryPathEqualsTheScalarReference)
   EXPECT_EQ(row[2], 999.f);
   for (int x = 3; x < 64; ++x)
     EXPECT_EQ(row[x], Hamming::distanceScalar(a[x], b[x - 3]));
-  // A row longer than row()'s 256-pixel chunk, with a shift that leaves SIMD tails in both chunks.
+  // A long row with a shift that leaves a SIMD tail (601 - 37 = 564 = 8 * 70 + 4 pixels).
   std::vector<PixelDescriptor> c(601), e(601);
   for (size_t i = 0; i < c.size(); ++i)
     for (int w = 0; w < 4; ++w)

@@ -34,6 +34,9 @@ void hammingDistances(HammingPath path, const uint64_t* query, const uint64_t* c
 /// Throws std::invalid_argument when `path` is not available or `words` is not one of the above.
 void hammingDistancesPairwise(HammingPath path, const uint64_t* a, const uint64_t* b, size_t count, int words,
                               uint16_t* out);
+/// The same counts written as floats (exact: at most 512), for a float cost volume without a conversion pass.
+void hammingDistancesPairwise(HammingPath path, const uint64_t* a, const uint64_t* b, size_t count, int words,
+                              float* out);
 
 /// One distance, scalar reference.
 int hammingDistanceReference(const uint64_t* a, const uint64_t* b, int words);

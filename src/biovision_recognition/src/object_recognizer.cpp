@@ -16,6 +16,13 @@ ObjectRecognizer::ObjectRecognizer(std::shared_ptr<const V1Descriptor> descripto
 {
 }
 
+void ObjectRecognizer::setCoarseDftSizes(bool coarse)
+{
+  V1FeaturePyramid::Parameters p = pyramid_.parameters();
+  p.coarse_dft_sizes = coarse;
+  pyramid_ = V1FeaturePyramid(p);
+}
+
 ObjectRecognizer::RegionFeatures ObjectRecognizer::regionFeatures(const cv::Mat& gray, const cv::Rect& box,
                                                                   const std::vector<int>& levels)
 {

@@ -65,6 +65,10 @@ public:
 
   ObjectRecognizer(std::shared_ptr<const V1Descriptor> descriptor, const Parameters& parameters);
 
+  /// The feature pyramid's DFT sizes (V1FeaturePyramid::Parameters::coarse_dft_sizes, on by default): off
+  /// only to measure what the coarse sizes save. Drops the pyramid's cached kernel spectra.
+  void setCoarseDftSizes(bool coarse);
+
   /// gray: CV_32FC1 [0, 1]. Regions are clipped to the image; none = the whole image (rank 0).
   /// At most one object per region: the best verified view.
   std::vector<RecognizedObject> recognize(const cv::Mat& gray, const std::vector<SearchRegion>& regions,

@@ -49,6 +49,9 @@ void RecognitionNodelet::onInitNodelet()
   }
   model_id_ = descriptor->model().id();
   recognizer_ = std::make_unique<ObjectRecognizer>(descriptor, ObjectRecognizer::Parameters());
+  bool coarse_dft_sizes = V1FeaturePyramid::Parameters().coarse_dft_sizes;
+  pnh.param("coarse_dft_sizes", coarse_dft_sizes, coarse_dft_sizes);  // loop_bench's A/B of the coarse sizes
+  recognizer_->setCoarseDftSizes(coarse_dft_sizes);
   memory_ = std::make_unique<ObjectMemory>(descriptor->model().bits(), model_id_);
   if (!memory_file_.empty())
     loadMemory();

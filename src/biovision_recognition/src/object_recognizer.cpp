@@ -11,16 +11,27 @@
 
 namespace biovision_recognition
 {
+namespace
+{
+V1FeaturePyramid::Parameters pyramidParameters(const V1Descriptor& descriptor, const ObjectRecognizer::Parameters& p)
+{
+  V1FeaturePyramid::Parameters pyramid = descriptor.pyramidParameters();
+  pyramid.coarse_dft_sizes = p.coarse_dft_sizes;
+  return pyramid;
+}
+}  // namespace
+
 ObjectRecognizer::ObjectRecognizer(std::shared_ptr<const V1Descriptor> descriptor, const Parameters& parameters)
-  : descriptor_(std::move(descriptor)), parameters_(parameters), pyramid_(descriptor_->pyramidParameters())
+  : descriptor_(std::move(descriptor)), parameters_(parameters), pyramid_(pyramidParameters(*descriptor_, parameters_))
 {
 }
 
-void ObjectRecognizer::setCoarseDftSizes(bool coarse)
+void ObjectRecognizer::setParameters(const Parameters& parameters)
 {
-  V1FeaturePyramid::Parameters p = pyramid_.parameters();
-  p.coarse_dft_sizes = coarse;
-  pyramid_ = V1FeaturePyramid(p);
+  const bool rebuild = parameters.coarse_dft_sizes != parameters_.coarse_dft_sizes;
+  parameters_ = parameters;
+  if (rebuild)
+    pyramid_ = V1FeaturePyramid(pyramidParameters(*descriptor_, parameters_));
 }
 
 ObjectRecognizer::RegionFeatures ObjectRecognizer::regionFeatures(const cv::Mat& gray, const cv::Rect& box,

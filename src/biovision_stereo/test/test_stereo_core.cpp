@@ -221,10 +221,19 @@ TEST(Hamming, EveryPathEqualsTheScalarReference)
       c[i].words[w] = rng();
       e[i].words[w] = rng();
     }
-  std::vector<float> long_row(c.size());
-  Hamming::row(c.data(), e.data(), static_cast<int>(c.size()), 37, 999.f, long_row.data());
-  for (int x = 0; x < static_cast<int>(c.size()); ++x)
-    ASSERT_EQ(long_row[x], x < 37 ? 999.f : Hamming::distanceScalar(c[x], e[x - 37])) << "x " << x;
+  const int n = static_cast<int>(c.size());
+  for (const auto path : biovision_common::availableHammingPaths())
+    for (int shift : {0, 37, n - 1, n, n + 5})
+    {
+      std::vector<float> long_row(c.size(), -1.f);
+      Hamming::row(c.data(), e.data(), n, shift, 999.f, long_row.data(), path);
+      for (int x = 0; x < n; ++x)
+        ASSERT_EQ(long_row[x], x < shift ? 999.f : Hamming::distanceScalar(c[x], e[x - shift]))
+            << biovision_common::toString(path) << " shift " << shift << " x " << x;
+    }
+  float untouched = -1.f;
+  Hamming::row(c.data(), e.data(), 0, 0, 999.f, &untouched);  // width 0: nothing written
+  EXPECT_EQ(untouched, -1.f);
   EXPECT_FALSE(Hamming::pathName().empty());
 }
 

@@ -1,4 +1,5 @@
 // Unit tests of the ROS-free V1 core on synthetic images with known answers.
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <limits>
@@ -346,6 +347,15 @@ TEST(SimpleCellBank, CoarseDftSizesCollapseChangingSizesAndKeepTheResponses)
   {
     const int len = SimpleCellBank::dftLength(n, true);
     ASSERT_GE(len, n);
+    int smallest = 1 << 30;  // brute force over the set
+    for (int a = 0; a < 12; ++a)
+      for (int m : {8, 10, 12, 15})
+        if ((m << a) >= n)
+          smallest = std::min(smallest, m << a);
+    if (n > 8)
+    {
+      ASSERT_EQ(len, smallest) << n;
+    }
     if (n > 8)
     {
       int m = len;

@@ -51,6 +51,9 @@ public:
     /// verify under 1% of them (MultiIndexHash::candidateFraction); otherwise SIMD brute force, which
     /// matcher_bench measured faster at the default radius 24 even with 2 million codes.
     int index_min_library = 100000;
+    /// The feature pyramid on coarse DFT sizes (V1FeaturePyramid::Parameters::coarse_dft_sizes): region
+    /// crops of ever-new sizes then rarely rebuild the V1 kernel spectra. false only to measure that.
+    bool coarse_dft_sizes = true;
     GeometricVerifier::Parameters verifier;
   };
 
@@ -65,10 +68,6 @@ public:
 
   ObjectRecognizer(std::shared_ptr<const V1Descriptor> descriptor, const Parameters& parameters);
 
-  /// The feature pyramid's DFT sizes (V1FeaturePyramid::Parameters::coarse_dft_sizes, on by default): off
-  /// only to measure what the coarse sizes save. Drops the pyramid's cached kernel spectra.
-  void setCoarseDftSizes(bool coarse);
-
   /// gray: CV_32FC1 [0, 1]. Regions are clipped to the image; none = the whole image (rank 0).
   /// At most one object per region: the best verified view.
   std::vector<RecognizedObject> recognize(const cv::Mat& gray, const std::vector<SearchRegion>& regions,
@@ -79,7 +78,8 @@ public:
   ObjectView describe(const cv::Mat& gray, cv::Rect box, const std::string& label);
 
   const Parameters& parameters() const { return parameters_; }
-  void setParameters(const Parameters& parameters) { parameters_ = parameters; }
+  /// A change of coarse_dft_sizes rebuilds the pyramid (its cached kernel spectra are dropped).
+  void setParameters(const Parameters& parameters);
   const V1Descriptor& descriptor() const { return *descriptor_; }
 
 private:

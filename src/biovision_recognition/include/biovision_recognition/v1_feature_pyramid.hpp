@@ -34,9 +34,10 @@ public:
     int min_level_size = 12;   ///< stop when a level's smaller side drops below this [px]
     int pooling_diameter = 4;  ///< disk the pooled maps take the maximum over [level px]. 1..16
     int pooling_phases = 4;    ///< 2: max of the signed even/odd responses; 4: also max of their negatives
-    /// Levels' DFTs on SimpleCellBank's coarse sizes: region crops change size every call, and each new
-    /// size rebuilt the kernel spectra (2.5 sets per region in loop_bench). Same responses up to rounding.
-    bool coarse_dft_sizes = true;
+    /// Levels' DFTs on SimpleCellBank's coarse sizes, for images whose size changes every call (ObjectRecognizer's
+    /// region crops: each new size rebuilt the kernel spectra, 2.5 sets per region in loop_bench). Same
+    /// responses up to rounding; off for fixed sizes (training, evaluation), which only lose by it.
+    bool coarse_dft_sizes = false;
     biovision_v1::KeypointDetector::Parameters keypoints;
   };
 

@@ -48,10 +48,9 @@ void RecognitionNodelet::onInitNodelet()
     throw std::runtime_error(std::string("descriptor model (~model_file) refused: ") + e.what());
   }
   model_id_ = descriptor->model().id();
-  recognizer_ = std::make_unique<ObjectRecognizer>(descriptor, ObjectRecognizer::Parameters());
-  bool coarse_dft_sizes = V1FeaturePyramid::Parameters().coarse_dft_sizes;
-  pnh.param("coarse_dft_sizes", coarse_dft_sizes, coarse_dft_sizes);  // loop_bench's A/B of the coarse sizes
-  recognizer_->setCoarseDftSizes(coarse_dft_sizes);
+  ObjectRecognizer::Parameters parameters;
+  pnh.param("coarse_dft_sizes", parameters.coarse_dft_sizes, parameters.coarse_dft_sizes);  // loop_bench's A/B
+  recognizer_ = std::make_unique<ObjectRecognizer>(descriptor, parameters);
   memory_ = std::make_unique<ObjectMemory>(descriptor->model().bits(), model_id_);
   if (!memory_file_.empty())
     loadMemory();
@@ -234,8 +233,8 @@ void RecognitionNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
       o.has_position = disparity_recent && position(f.box, gray.size(), o.position);
       out.objects.push_back(o);
     }
+    last_objects_ = out.objects.size();  // details() reads it under the same lock
   }
-  last_objects_ = out.objects.size();
   objects_pub_.publish(out);
   diagnostics_.tick();
 

@@ -14,7 +14,8 @@ namespace biovision_stereo
 class Hamming
 {
 public:
-  /// Row of costs: out[x] = distance(a[x], b[x - shift]) for x >= shift, `missing` for x < shift.
+  /// Row of costs: out[x] = distance(a[x], b[x - shift]) for x >= shift, `missing` for x < shift; a and b
+  /// hold `width` descriptors, shift >= 0 (a disparity), width >= 0.
   /// Runs on bestHammingPath() unless `path` is given (benchmarks compare the paths); throws
   /// std::invalid_argument when this CPU cannot run `path`.
   static void row(const PixelDescriptor* a, const PixelDescriptor* b, int width, int shift, float missing, float* out,

@@ -208,8 +208,8 @@ __attribute__((target("popcnt"))) void popcntPairwise(const uint64_t* a, const u
   if (words == 4)  // unrolled: the stereo cost volume's case
   {
     for (size_t i = 0; i < count; ++i, a += 4, b += 4)
-      out[i] = static_cast<T>(_mm_popcnt_u64(a[0] ^ b[0]) + _mm_popcnt_u64(a[1] ^ b[1]) +
-                              _mm_popcnt_u64(a[2] ^ b[2]) + _mm_popcnt_u64(a[3] ^ b[3]));
+      out[i] = static_cast<T>(_mm_popcnt_u64(a[0] ^ b[0]) + _mm_popcnt_u64(a[1] ^ b[1]) + _mm_popcnt_u64(a[2] ^ b[2]) +
+                              _mm_popcnt_u64(a[3] ^ b[3]));
     return;
   }
   for (size_t i = 0; i < count; ++i, a += words, b += words)
@@ -286,8 +286,7 @@ __attribute__((target("avx512f,avx512vpopcntdq,popcnt"))) void avx512Pairwise(co
                                          _mm512_permutex2var_epi64(p[0], odd, p[1]));  // c0..c3, two halves each
       const __m512i f = _mm512_add_epi64(_mm512_permutex2var_epi64(p[2], even, p[3]),
                                          _mm512_permutex2var_epi64(p[2], odd, p[3]));  // c4..c7
-      const __m512i sum =
-          _mm512_add_epi64(_mm512_permutex2var_epi64(e, even, f), _mm512_permutex2var_epi64(e, odd, f));
+      const __m512i sum = _mm512_add_epi64(_mm512_permutex2var_epi64(e, even, f), _mm512_permutex2var_epi64(e, odd, f));
       if constexpr (std::is_same_v<T, float>)
         _mm256_storeu_ps(out + i, _mm256_cvtepi32_ps(_mm512_cvtepi64_epi32(sum)));
       else

@@ -93,7 +93,8 @@ TEST(HammingDistance, EveryAvailablePairwisePathEqualsTheScalarReference)
       }
       std::vector<uint16_t> expected(count), got(count);
       for (size_t i = 0; i < count; ++i)
-        expected[i] = static_cast<uint16_t>(hammingDistanceReference(a.data() + i * words, b.data() + i * words, words));
+        expected[i] = static_cast<uint16_t>(
+            hammingDistanceReference(a.data() + i * words, b.data() + i * words, words));
       for (HammingPath p : availableHammingPaths())
       {
         std::fill(got.begin(), got.end(), 0xFFFF);

@@ -355,24 +355,35 @@ int hammingDistanceReference(const uint64_t* a, const uint64_t* b, int words)
 
 namespace
 {
-template <class T>
-void pairwise(HammingPath path, const uint64_t* a, const uint64_t* b, size_t count, int words, T* out)
+/// Checks `words` and that this CPU runs `path` (std::invalid_argument naming `function` otherwise), then
+/// runs the kernel of that path.
+template <class Scalar, class Popcnt, class Avx2, class Avx512>
+void dispatch(const char* function, HammingPath path, int words, Scalar scalar, Popcnt popcnt, Avx2 avx2, Avx512 avx512)
 {
   if (words != 1 && words != 2 && words != 4 && words != 8)
-    throw std::invalid_argument("hammingDistancesPairwise: words must be 1, 2, 4 or 8");
+    throw std::invalid_argument(std::string(function) + ": words must be 1, 2, 4 or 8");
   if (!available(path))
-    throw std::invalid_argument("hammingDistancesPairwise: this CPU cannot run the " + toString(path) + " path");
+    throw std::invalid_argument(std::string(function) + ": this CPU cannot run the " + toString(path) + " path");
   switch (path)
   {
     case HammingPath::Scalar:
-      return scalarPairwise(a, b, count, words, out);
+      return scalar();
     case HammingPath::Popcnt:
-      return popcntPairwise(a, b, count, words, out);
+      return popcnt();
     case HammingPath::Avx2:
-      return avx2Pairwise(a, b, count, words, out);
+      return avx2();
     case HammingPath::Avx512:
-      return avx512Pairwise(a, b, count, words, out);
+      return avx512();
   }
+}
+
+template <class T>
+void pairwise(HammingPath path, const uint64_t* a, const uint64_t* b, size_t count, int words, T* out)
+{
+  dispatch(
+      "hammingDistancesPairwise", path, words, [&] { scalarPairwise(a, b, count, words, out); },
+      [&] { popcntPairwise(a, b, count, words, out); }, [&] { avx2Pairwise(a, b, count, words, out); },
+      [&] { avx512Pairwise(a, b, count, words, out); });
 }
 }  // namespace
 
@@ -391,20 +402,10 @@ void hammingDistancesPairwise(HammingPath path, const uint64_t* a, const uint64_
 void hammingDistances(HammingPath path, const uint64_t* query, const uint64_t* codes, size_t count, int words,
                       uint16_t* out)
 {
-  if (words != 1 && words != 2 && words != 4 && words != 8)
-    throw std::invalid_argument("hammingDistances: words must be 1, 2, 4 or 8");
-  if (!available(path))
-    throw std::invalid_argument("hammingDistances: this CPU cannot run the " + toString(path) + " path");
-  switch (path)
-  {
-    case HammingPath::Scalar:
-      return scalarDistances(query, codes, count, words, out);
-    case HammingPath::Popcnt:
-      return popcntDistances(query, codes, count, words, out);
-    case HammingPath::Avx2:
-      return avx2Distances(query, codes, count, words, out);
-    case HammingPath::Avx512:
-      return avx512Distances(query, codes, count, words, out);
-  }
+  dispatch(
+      "hammingDistances", path, words, [&] { scalarDistances(query, codes, count, words, out); },
+      [&] { popcntDistances(query, codes, count, words, out); },
+      [&] { avx2Distances(query, codes, count, words, out); },
+      [&] { avx512Distances(query, codes, count, words, out); });
 }
 }  // namespace biovision_common

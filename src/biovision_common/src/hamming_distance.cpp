@@ -308,7 +308,8 @@ bool available(HammingPath path)
     case HammingPath::Avx2:
       return CpuFeatures::host().avx2 && CpuFeatures::host().popcnt;
     case HammingPath::Avx512:
-      return CpuFeatures::host().avx512f && CpuFeatures::host().avx512vpopcntdq;
+      // The kernels' tails run the POPCNT loop.
+      return CpuFeatures::host().avx512f && CpuFeatures::host().avx512vpopcntdq && CpuFeatures::host().popcnt;
   }
   return false;
 }

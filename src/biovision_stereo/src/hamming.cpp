@@ -1,7 +1,5 @@
 #include "biovision_stereo/hamming.hpp"
 
-#include "biovision_common/bit_count.hpp"
-
 namespace biovision_stereo
 {
 void Hamming::row(const PixelDescriptor* a, const PixelDescriptor* b, int width, int shift, float missing, float* out,
@@ -25,10 +23,7 @@ int Hamming::distance(const PixelDescriptor& a, const PixelDescriptor& b)
 
 int Hamming::distanceScalar(const PixelDescriptor& a, const PixelDescriptor& b)
 {
-  int n = 0;
-  for (int i = 0; i < 4; ++i)
-    n += biovision_common::countBits(a.words[i] ^ b.words[i]);
-  return n;
+  return biovision_common::hammingDistanceReference(a.words.data(), b.words.data(), 4);
 }
 
 std::string Hamming::pathName()

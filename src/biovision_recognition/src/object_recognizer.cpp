@@ -86,6 +86,15 @@ ObjectView ObjectRecognizer::describe(const cv::Mat& gray, cv::Rect box, const s
   return view;
 }
 
+std::string ObjectRecognizer::learnProblem(const ObjectView& view) const
+{
+  const int needed = std::max(parameters_.min_view_keypoints, parameters_.verifier.min_inliers);
+  if (static_cast<int>(view.keypoints.size()) >= needed)
+    return "";
+  return "only " + std::to_string(view.keypoints.size()) + " keypoints in the box, " + std::to_string(needed) +
+         " needed (min_view_keypoints): too little texture, or too far away, to learn";
+}
+
 std::vector<RecognizedObject> ObjectRecognizer::recognize(const cv::Mat& gray,
                                                           const std::vector<SearchRegion>& regions_in,
                                                           const ObjectMemory& memory, Statistics* statistics)
@@ -166,6 +175,10 @@ std::vector<RecognizedObject> ObjectRecognizer::recognize(const cv::Mat& gray,
       best.score = std::min(1.0, static_cast<double>(r.inliers) / query.keypoints.size());
       best.box = cv::boundingRect(corners) & image;
       best.region_rank = region.rank;
+      best.match_points.clear();
+      for (size_t i = 0; i < r.inlier_mask.size() && i < points.second.size(); ++i)
+        if (r.inlier_mask[i])
+          best.match_points.push_back(points.second[i]);
     }
     if (!best.label.empty())
       found.push_back(best);

@@ -263,6 +263,52 @@ TEST_F(RecognitionNode, LearnRefusesBoxesThatAreNotARegionAndLabelsTheMemoryCann
       EXPECT_NE(o.label, c.label) << c.what;
 }
 
+// The teacher projects its box for the image recognition last processed and names that image's stamp:
+// learning from the latest image instead once taught photo_box on box_blue's pixels (the head had moved).
+TEST_F(RecognitionNode, LearnsFromTheImageTheRequestStampNamesNotTheLatest)
+{
+  ros::AsyncSpinner spinner(1);
+  spinner.start();
+  const auto earlier = show(scene("obj7__0.png", {150, 50}));
+  ASSERT_TRUE(earlier);
+  ASSERT_TRUE(show(scene("obj10__0.png", {150, 50})));  // now the latest image
+  biovision_msgs::LearnObject learn;
+  learn.request.box.x_offset = 150;
+  learn.request.box.y_offset = 50;
+  learn.request.box.width = 128;
+  learn.request.box.height = 128;
+  learn.request.label = "obj7_by_stamp";
+  learn.request.stamp = earlier->header.stamp;
+  ASSERT_TRUE(ros::service::call("recognition/learn_object", learn));
+  ASSERT_TRUE(learn.response.success) << learn.response.message;
+  learn.request.label = "obj10_latest";
+  learn.request.stamp = ros::Time();  // zero: the latest image
+  ASSERT_TRUE(ros::service::call("recognition/learn_object", learn));
+  ASSERT_TRUE(learn.response.success) << learn.response.message;
+  // A stamp the node holds no image for is refused, nothing stored.
+  learn.request.label = "never_held";
+  learn.request.stamp = earlier->header.stamp - ros::Duration(10.0);
+  ASSERT_TRUE(ros::service::call("recognition/learn_object", learn));
+  EXPECT_FALSE(learn.response.success);
+  EXPECT_NE(learn.response.message.find("no image stamped"), std::string::npos) << learn.response.message;
+
+  // obj7 elsewhere is named by the view learned from the earlier image, obj10 by the latest's.
+  const auto seven = show(scene("obj7__0.png", {40, 60}), {cv::Rect(30, 50, 150, 150)});
+  ASSERT_TRUE(seven);
+  ASSERT_EQ(seven->objects.size(), 1u);
+  EXPECT_EQ(seven->objects[0].label, "obj7_by_stamp");
+  const auto ten = show(scene("obj10__0.png", {40, 60}), {cv::Rect(30, 50, 150, 150)});
+  ASSERT_TRUE(ten);
+  ASSERT_EQ(ten->objects.size(), 1u);
+  EXPECT_EQ(ten->objects[0].label, "obj10_latest");
+  biovision_msgs::ListObjects list;
+  ASSERT_TRUE(ros::service::call("recognition/list_objects", list));
+  EXPECT_EQ(std::count(list.response.labels.begin(), list.response.labels.end(), "never_held"), 0);
+  std::string memory_file;
+  if (ros::param::get("~memory_file", memory_file))
+    std::filesystem::remove(memory_file);
+}
+
 int main(int argc, char** argv)
 {
   return biovision_ros_common::RosTestRun(argc, argv, "recognition_node_test", 0).run();  // the fixtures spin

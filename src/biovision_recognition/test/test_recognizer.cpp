@@ -135,6 +135,10 @@ TEST(ObjectRecognizer, FindsALearnedObjectInAScenePutsTheBoxOnItAndStaysSilentWi
   EXPECT_LE(found[0].score, 1.0);
   const cv::Rect truth(180, 90, 96, 96);
   EXPECT_GT((found[0].box & truth).area(), 0.7 * truth.area());
+  // The verified matches, which ObjectLocator takes the depth at, lie on the object.
+  ASSERT_EQ(static_cast<int>(found[0].match_points.size()), found[0].matches);
+  for (const cv::Point2f& m : found[0].match_points)
+    EXPECT_TRUE(cv::Rect2f(176, 86, 104, 104).contains(m)) << m;
 
   // Whole image when no region is given; a region elsewhere sees nothing.
   const auto whole = recognizer.recognize(scene, {}, memory);
@@ -146,6 +150,29 @@ TEST(ObjectRecognizer, FindsALearnedObjectInAScenePutsTheBoxOnItAndStaysSilentWi
   cv::Mat third = other.clone();
   objectImage(96, 13).copyTo(third(cv::Rect(100, 60, 96, 96)));
   EXPECT_TRUE(recognizer.recognize(third, {}, memory).empty());
+}
+
+TEST(ObjectRecognizer, AViewWithTooFewKeypointsIsNotLearnable)
+{
+  ObjectRecognizer recognizer(trainedDescriptor(), ObjectRecognizer::Parameters());
+  const ObjectView rich = recognizer.describe(objectImage(96, 11), cv::Rect(), "cup");
+  ASSERT_GE(rich.keypoints.size(), 20u);
+  EXPECT_EQ(recognizer.learnProblem(rich), "");
+  // The same view cut to 19 keypoints: one short of the default.
+  ObjectView small = rich;
+  small.keypoints.resize(19);
+  const std::string why = recognizer.learnProblem(small);
+  EXPECT_NE(why.find("only 19 keypoints"), std::string::npos) << why;
+  EXPECT_NE(why.find("20 needed"), std::string::npos) << why;
+  // min_matches above min_view_keypoints raises the need with it: a view must be able to verify at all.
+  ObjectRecognizer::Parameters p = recognizer.parameters();
+  p.min_view_keypoints = 5;
+  p.verifier.min_inliers = 25;
+  recognizer.setParameters(p);
+  EXPECT_NE(recognizer.learnProblem(small).find("25 needed"), std::string::npos);
+  p.verifier.min_inliers = 5;
+  recognizer.setParameters(p);
+  EXPECT_EQ(recognizer.learnProblem(small), "");
 }
 
 TEST(ObjectRecognizer, CoarseDftSizesRebuildFewerKernelSpectraForGrowingRegionsAndFindTheSameObject)

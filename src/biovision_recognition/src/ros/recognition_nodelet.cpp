@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include <biovision_msgs/RecognizedObjectArray.h>
@@ -14,6 +15,7 @@
 
 #include "biovision_common/atomic_file.hpp"
 #include "biovision_common/stored_file.hpp"
+#include "biovision_recognition/object_locator.hpp"
 #include "biovision_ros_common/image_message_converter.hpp"
 #include "biovision_ros_common/processing_times.hpp"
 #include "biovision_v1/input_image.hpp"
@@ -101,6 +103,7 @@ void RecognitionNodelet::reconfigure(RecognitionConfig& c, uint32_t /*level*/)
   p.verifier.inlier_distance = c.inlier_distance;
   p.verifier.max_rotation_degrees = c.max_rotation;
   p.max_keypoints = c.max_keypoints;
+  p.min_view_keypoints = c.min_view_keypoints;
   p.time_budget_ms = c.time_budget_ms;
   p.region_margin = c.region_margin;
   recognizer_->setParameters(p);
@@ -125,10 +128,11 @@ void RecognitionNodelet::infoCallback(const sensor_msgs::CameraInfoConstPtr& msg
   info_ = msg;
 }
 
-bool RecognitionNodelet::position(const cv::Rect& box, const cv::Size& image_size, geometry_msgs::Point& point) const
+bool RecognitionNodelet::position(const RecognizedObject& object, const cv::Size& image_size,
+                                  geometry_msgs::Point& point)
 {
   if (!disparity_ || !info_ || !(disparity_->f > 0) || !(std::abs(disparity_->T) > 0) || !(info_->P[0] > 0) ||
-      info_->width == 0 || info_->height == 0)
+      !(info_->P[5] > 0) || info_->width == 0 || info_->height == 0)
     return false;
   cv::Mat d;
   try
@@ -139,32 +143,24 @@ bool RecognitionNodelet::position(const cv::Rect& box, const cv::Size& image_siz
   {
     return false;
   }
-  // The disparity may be at another resolution than the image.
-  const double sx = double(d.cols) / image_size.width, sy = double(d.rows) / image_size.height;
-  const cv::Rect r = cv::Rect(cvRound(box.x * sx), cvRound(box.y * sy), cvRound(box.width * sx),
-                              cvRound(box.height * sy)) &
-                     cv::Rect(0, 0, d.cols, d.rows);
-  std::vector<float> values;
-  for (int y = r.y; y < r.y + r.height; ++y)
-    for (int x = r.x; x < r.x + r.width; ++x)
-    {
-      const float v = d.at<float>(y, x);
-      if (std::isfinite(v) && v > disparity_->min_disparity && v > 0)
-        values.push_back(v);
-    }
-  if (values.size() < 10)
+  // Principal point and focal lengths at the disparity's resolution (it may differ from the image's).
+  ObjectLocator::Camera camera;
+  camera.focal_length = disparity_->f;
+  camera.baseline = std::abs(disparity_->T);
+  camera.fx = info_->P[0] * double(d.cols) / info_->width;
+  camera.fy = info_->P[5] * double(d.rows) / info_->height;
+  camera.cx = info_->P[2] * double(d.cols) / info_->width;
+  camera.cy = info_->P[6] * double(d.rows) / info_->height;
+  camera.min_disparity = disparity_->min_disparity;
+  cv::Point3d p;
+  const ObjectLocator::Source source = ObjectLocator::locate(d, camera, image_size, object.box, object.match_points, p);
+  if (source == ObjectLocator::Source::None)
     return false;
-  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-  const double disparity = values[values.size() / 2];
-  const double z = disparity_->f * std::abs(disparity_->T) / disparity;
-  // Principal point and focal length at the disparity's resolution.
-  const double fx = info_->P[0] * double(d.cols) / info_->width, fy = info_->P[5] * double(d.rows) / info_->height;
-  const double cx = info_->P[2] * double(d.cols) / info_->width, cy = info_->P[6] * double(d.rows) / info_->height;
-  const double u = (box.x + box.width / 2.0) * sx, v = (box.y + box.height / 2.0) * sy;
-  point.x = (u - cx) * z / fx;
-  point.y = (v - cy) * z / fy;
-  point.z = z;
-  return std::isfinite(point.x) && std::isfinite(point.y) && std::isfinite(point.z);
+  ++(source == ObjectLocator::Source::Matches ? located_at_matches_ : located_by_box_);
+  point.x = p.x;
+  point.y = p.y;
+  point.z = p.z;
+  return true;
 }
 
 void RecognitionNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
@@ -191,7 +187,12 @@ void RecognitionNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
   std::vector<SearchRegion> regions;
   {
     std::lock_guard<std::mutex> lock(state_mutex_);
-    last_gray_ = gray;
+    // Newest last; a stamp before the newest (a looped bag, a restarted simulator) starts the history again.
+    if (!recent_gray_.empty() && msg->header.stamp < recent_gray_.back().first)
+      recent_gray_.clear();
+    recent_gray_.emplace_back(msg->header.stamp, gray);
+    while (recent_gray_.size() > kRecentImages)
+      recent_gray_.pop_front();
     if (regions_ && std::abs((regions_->header.stamp - msg->header.stamp).toSec()) <= max_input_age_)
     {
       // Region boxes are in full-resolution pixels of the region message; map them onto this image.
@@ -230,7 +231,7 @@ void RecognitionNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
       o.box.width = static_cast<uint32_t>(f.box.width);
       o.box.height = static_cast<uint32_t>(f.box.height);
       o.region_rank = f.region_rank;
-      o.has_position = disparity_recent && position(f.box, gray.size(), o.position);
+      o.has_position = disparity_recent && position(f, gray.size(), o.position);
       out.objects.push_back(o);
     }
     last_objects_ = out.objects.size();  // details() reads it under the same lock
@@ -329,31 +330,46 @@ bool RecognitionNodelet::learn(biovision_msgs::LearnObject::Request& req, biovis
     res.message = std::string("refused: ") + e.what();
     return true;
   }
-  if (last_gray_.empty())
+  if (recent_gray_.empty())
   {
     res.message =
         "no image received yet (the node subscribes to images while `objects` has a subscriber, or with ~lazy false)";
     return true;
+  }
+  cv::Mat gray = recent_gray_.back().second;
+  if (!req.stamp.isZero())
+  {
+    const auto held = std::find_if(recent_gray_.begin(), recent_gray_.end(),
+                                   [&req](const auto& image) { return image.first == req.stamp; });
+    if (held == recent_gray_.end())
+    {
+      std::ostringstream why;
+      why << "refused: no image stamped " << req.stamp << " is held (the last " << recent_gray_.size()
+          << " recognised span " << recent_gray_.front().first << " to " << recent_gray_.back().first << ")";
+      res.message = why.str();
+      return true;
+    }
+    gray = held->second;
   }
   try
   {
     // The box must be a region of the image: an empty or zero-width box would be taken as the whole image,
     // and every later scene would then be labelled with this object.
     const cv::Rect box(req.box.x_offset, req.box.y_offset, req.box.width, req.box.height);
-    const std::string why = boxProblem(req.box, last_gray_.size());
+    const std::string why = boxProblem(req.box, gray.size());
     if (!why.empty())
     {
       res.message = "refused: " + why;
       return true;
     }
-    ObjectView view = recognizer_->describe(last_gray_, box, req.label);
-    if (static_cast<int>(view.keypoints.size()) < recognizer_->parameters().verifier.min_inliers)
+    ObjectView view = recognizer_->describe(gray, box, req.label);
+    res.keypoints = static_cast<uint32_t>(view.keypoints.size());
+    const std::string problem = recognizer_->learnProblem(view);
+    if (!problem.empty())
     {
-      res.message = "only " + std::to_string(view.keypoints.size()) +
-                    " keypoints in the box: too little texture to learn";
+      res.message = "refused: " + problem;
       return true;
     }
-    res.keypoints = static_cast<uint32_t>(view.keypoints.size());
     memory_->addView(std::move(view));
     std::string error;
     res.success = saveMemory(error);
@@ -429,6 +445,8 @@ void RecognitionNodelet::details(diagnostic_updater::DiagnosticStatusWrapper& s)
   s.add("last regions processed", last_stats_.regions_processed);
   s.add("last regions skipped", last_stats_.regions_skipped);
   s.add("last keypoints", last_stats_.keypoints);
+  s.add("positions from the matches' disparity", located_at_matches_);
+  s.add("positions from the box median (too few matches with a disparity)", located_by_box_);
   s.add("last kernel spectra built", last_stats_.kernel_spectra_built);
   s.add("kernel spectra built per region", regions_total_ ? double(spectra_built_total_) / regions_total_ : 0.0);
   s.add("last recognition time [ms]", last_stats_.milliseconds);

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <deque>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -54,8 +55,9 @@ private:
   /// Why a learn box cannot be used ("" when it can): zero-area, under kMinBoxSide, or outside the image.
   static std::string boxProblem(const sensor_msgs::RegionOfInterest& box, const cv::Size& image);
   static constexpr uint32_t kMinBoxSide = 8;  ///< [px]: the smallest region ObjectRecognizer::describe takes
-  /// Box centre in the camera frame from the median disparity inside the box; false without data.
-  bool position(const cv::Rect& box, const cv::Size& image_size, geometry_msgs::Point& point) const;
+  /// The object's box centre in the camera frame at its matches' disparity (ObjectLocator); false without
+  /// data. Counts where each depth came from, for diagnostics.
+  bool position(const RecognizedObject& object, const cv::Size& image_size, geometry_msgs::Point& point);
 
   std::unique_ptr<image_transport::ImageTransport> it_;
   image_transport::Subscriber image_sub_;
@@ -73,7 +75,10 @@ private:
   int max_regions_ = 3;
   double max_input_age_ = 0.5;
   size_t max_input_pixels_ = 0;  // ~max_input_pixels: larger images are refused (bounded memory per frame)
-  cv::Mat last_gray_;
+  /// The last images recognised (grey, with their stamps), newest last: learn_object takes the one its
+  /// request names, so a box projected for that instant is cut from that image even after the head moved.
+  std::deque<std::pair<ros::Time, cv::Mat>> recent_gray_;
+  static constexpr size_t kRecentImages = 8;
   biovision_msgs::SalientRegionArrayConstPtr regions_;
   stereo_msgs::DisparityImageConstPtr disparity_;
   sensor_msgs::CameraInfoConstPtr info_;
@@ -84,6 +89,7 @@ private:
   ObjectRecognizer::Statistics last_stats_;
   long regions_total_ = 0, spectra_built_total_ = 0;  // since start: how often a region size missed the cache
   size_t last_objects_ = 0;
+  long located_at_matches_ = 0, located_by_box_ = 0;  // positions by ObjectLocator::Source, since start
   std::string model_id_;
 };
 }  // namespace biovision_recognition

@@ -24,6 +24,12 @@ void ObjectMemoryParameters::validate() const
     m << "ObjectMemoryParameters.averaging_window = " << averaging_window << " is outside [1, 1000]";
     throw std::invalid_argument(m.str());
   }
+  if (!(max_range > 0.0 && max_range <= 100.0))
+  {
+    std::ostringstream m;
+    m << "ObjectMemoryParameters.max_range = " << max_range << " is outside (0, 100]";
+    throw std::invalid_argument(m.str());
+  }
 }
 
 ObjectMemory::ObjectMemory(const ObjectMemoryParameters& parameters) : parameters_(parameters)
@@ -37,15 +43,23 @@ void ObjectMemory::setParameters(const ObjectMemoryParameters& parameters)
   parameters_ = parameters;
 }
 
-ObjectMemory::Sighting ObjectMemory::observe(const std::string& label, const Eigen::Vector3d& position, double stamp)
+ObjectMemory::Sighting ObjectMemory::observe(const std::string& label, const Eigen::Vector3d& position, double stamp,
+                                             double range)
 {
   const std::string problem = biovision_common::ObjectLabel::problem(label);
   if (!problem.empty())  // the rule the database checks on load: what is remembered can be loaded again
     throw std::invalid_argument("ObjectMemory::observe: " + problem);
   if (!position.allFinite() || !std::isfinite(stamp))
     throw std::invalid_argument("ObjectMemory::observe: non-finite position or stamp for '" + label + "'");
-  const ReinforcementRules& r = parameters_.rules;
+  if (!(range >= 0.0 && std::isfinite(range)))
+    throw std::invalid_argument("ObjectMemory::observe: negative or non-finite range for '" + label + "'");
   Sighting sighting;
+  if (range > parameters_.max_range)
+  {
+    sighting.too_far = true;
+    return sighting;
+  }
+  const ReinforcementRules& r = parameters_.rules;
   auto it = objects_.find(label);
   if (it != objects_.end())
   {

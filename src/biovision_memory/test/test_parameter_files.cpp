@@ -64,6 +64,7 @@ TEST(ParameterFile, MemoryYamlEqualsTheDefaults)
   const ObjectMemoryParameters objects;
   EXPECT_DOUBLE_EQ(y["objects"]["match_distance"].as<double>(), objects.match_distance);
   EXPECT_EQ(y["objects"]["averaging_window"].as<int>(), objects.averaging_window);
+  EXPECT_DOUBLE_EQ(y["objects"]["max_range"].as<double>(), objects.max_range);
 
   const LandmarkCorrectorParameters c;
   const YAML::Node k = y["landmarks"];

@@ -106,6 +106,7 @@ void MemoryNodelet::readParameters(const ros::NodeHandle& pnh, Settings& s, Shor
   objects.rules = rules;
   param(pnh, "objects/match_distance", objects.match_distance);
   param(pnh, "objects/averaging_window", objects.averaging_window);
+  param(pnh, "objects/max_range", objects.max_range);
   objects.validate();
 
   param(pnh, "landmarks/window", corrector.window);
@@ -337,7 +338,13 @@ void MemoryNodelet::onObjects(const biovision_msgs::RecognizedObjectArrayConstPt
     const Eigen::Vector3d in_odom = odom_from_camera * p;
     const Pose2D& map_from_odom = corrector_->mapFromOdom();
     const Eigen::Vector2d xy = map_from_odom.apply(in_odom.head<2>());
-    const auto sighting = objects_->observe(o.label, {xy.x(), xy.y(), in_odom.z()}, msg->header.stamp.toSec());
+    const auto sighting = objects_->observe(o.label, {xy.x(), xy.y(), in_odom.z()}, msg->header.stamp.toSec(),
+                                            p.norm());
+    if (sighting.too_far)
+    {
+      ++far_sightings_;
+      continue;
+    }
     ++sightings_;
     if (sighting.landmark && settings_.landmark_correction &&
         corrector_->observe(sighting.remembered.head<2>(), in_odom.head<2>(), msg->header.stamp.toSec()))
@@ -689,6 +696,7 @@ void MemoryNodelet::details(diagnostic_updater::DiagnosticStatusWrapper& s)
   s.add("objects", objects_->objects().size());
   s.add("landmarks", landmarks);
   s.add("object sightings", sightings_);
+  s.add("object sightings beyond objects/max_range (not used)", far_sightings_);
   s.add("landmark sightings used", landmark_sightings_);
   const Pose2D& m = corrector_->mapFromOdom();
   s.addf("map->odom", "x %.3f m, y %.3f m, yaw %.4f rad", m.x, m.y, m.yaw);

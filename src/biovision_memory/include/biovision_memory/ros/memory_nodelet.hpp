@@ -101,7 +101,7 @@ private:
   Pose2D odom_pose_{NAN, NAN, NAN};  // base_link in odom at the last STM move (NaN: none yet)
   bool have_camera_info_ = false;
   sensor_msgs::CameraInfo camera_info_;
-  unsigned frames_ = 0, tf_failures_ = 0, sightings_ = 0, landmark_sightings_ = 0;
+  unsigned frames_ = 0, tf_failures_ = 0, sightings_ = 0, far_sightings_ = 0, landmark_sightings_ = 0;
 
   std::unique_ptr<tf2_ros::Buffer> tf_buffer_;
   std::unique_ptr<tf2_ros::TransformListener> tf_listener_;

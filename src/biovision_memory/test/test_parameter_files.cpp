@@ -73,6 +73,7 @@ TEST(ParameterFile, MemoryYamlEqualsTheDefaults)
   EXPECT_DOUBLE_EQ(k["gain"].as<double>(), c.gain);
   EXPECT_DOUBLE_EQ(k["min_spread"].as<double>(), c.min_spread);
   EXPECT_DOUBLE_EQ(k["max_jump"].as<double>(), c.max_jump);
+  EXPECT_DOUBLE_EQ(k["max_range"].as<double>(), c.max_range);
 }
 
 int main(int argc, char** argv)

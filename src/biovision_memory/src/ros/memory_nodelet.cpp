@@ -114,6 +114,7 @@ void MemoryNodelet::readParameters(const ros::NodeHandle& pnh, Settings& s, Shor
   param(pnh, "landmarks/gain", corrector.gain);
   param(pnh, "landmarks/min_spread", corrector.min_spread);
   param(pnh, "landmarks/max_jump", corrector.max_jump);
+  param(pnh, "landmarks/max_range", corrector.max_range);
   corrector.validate();
 }
 
@@ -347,7 +348,7 @@ void MemoryNodelet::onObjects(const biovision_msgs::RecognizedObjectArrayConstPt
     }
     ++sightings_;
     if (sighting.landmark && settings_.landmark_correction &&
-        corrector_->observe(sighting.remembered.head<2>(), in_odom.head<2>(), msg->header.stamp.toSec()))
+        corrector_->observe(sighting.remembered.head<2>(), in_odom.head<2>(), msg->header.stamp.toSec(), p.norm()))
       ++landmark_sightings_;
   }
 }

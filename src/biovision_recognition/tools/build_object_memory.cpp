@@ -59,6 +59,12 @@ int main(int argc, char** argv)
         return;
       }
       ObjectView view = recognizer.describe(biovision_v1::InputImage(image).gray(), cv::Rect(), label);
+      const std::string problem = recognizer.learnProblem(view);  // the node's learn_object rule
+      if (!problem.empty())
+      {
+        std::cerr << "skipping " << path << ": " << problem << "\n";
+        return;
+      }
       std::cerr << label << ": " << path << " -> " << view.keypoints.size() << " keypoints\n";
       memory.addView(std::move(view));
     };

@@ -143,6 +143,7 @@ int main(int argc, char** argv)
   std::string objects, model, distractors_dir, json_path;
   int step = 20, limit = 60;
   double upscale = 1.0;
+  ObjectRecognizer::Parameters recognizer_parameters;
   biovision_common::ToolOptions options("recognition_eval", kDescription);
   CLI::App& app = options.app();
   app.add_option("--objects", objects, "objN__ANGLE.png views (COIL-100 naming)")
@@ -156,6 +157,9 @@ int main(int argc, char** argv)
       ->check(CLI::ExistingDirectory);
   app.add_option("--upscale", upscale, "resize every image by this factor first")->check(biovision_common::kPositive);
   app.add_option("--limit", limit, "at most this many distractors")->check(biovision_common::kNonNegative);
+  app.add_option("--min-view-keypoints", recognizer_parameters.min_view_keypoints,
+                 "templates with fewer keypoints are not learned (the node's learn_object rule)")
+      ->check(CLI::Range(1, 1000));
   app.add_option("--json", json_path, "write the results to this file");
   options.parse(argc, argv);
   try
@@ -187,12 +191,17 @@ int main(int argc, char** argv)
       throw std::runtime_error("no templates or no queries in " + objects);
 
     auto descriptor = std::make_shared<const V1Descriptor>(DescriptorModel::load(model));
-    ObjectRecognizer recognizer(descriptor, ObjectRecognizer::Parameters());
+    ObjectRecognizer recognizer(descriptor, recognizer_parameters);
     ObjectMemory memory(descriptor->model().bits(), descriptor->model().id());
     OrbBaseline orb(recognizer.parameters().verifier);
+    int refused = 0;  // views the node's learn_object would refuse (ObjectRecognizer::learnProblem)
     for (const auto& t : templates)
     {
-      memory.addView(recognizer.describe(biovision_v1::InputImage(t.image).gray(), cv::Rect(), t.label));
+      ObjectView view = recognizer.describe(biovision_v1::InputImage(t.image).gray(), cv::Rect(), t.label);
+      if (recognizer.learnProblem(view).empty())
+        memory.addView(std::move(view));
+      else
+        ++refused;
       cv::Mat gray;
       cv::cvtColor(t.image, gray, cv::COLOR_BGR2GRAY);
       orb.learn(gray, t.label);
@@ -235,6 +244,8 @@ int main(int argc, char** argv)
     nlohmann::ordered_json results;
     results["command"] = "rosrun biovision_recognition recognition_eval " + options.command();
     results["templates"] = templates.size();
+    results["min_view_keypoints"] = recognizer_parameters.min_view_keypoints;
+    results["templates_refused"] = refused;  // under min_view_keypoints: not learned by us (ORB learns all)
     results["queries"] = queries.size();
     results["distractors"] = distractors.size();
     results["v1"] = outcomeJson("v1", ours);

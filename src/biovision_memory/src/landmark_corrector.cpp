@@ -22,7 +22,7 @@ void LandmarkCorrectorParameters::validate() const
   check("gain", gain, 0, 1, true);
   check("min_spread", min_spread, 0, 100, true);
   check("max_jump", max_jump, 0, 100, true);
-  check("max_range", max_range, 0, 100, true);
+  check("max_depth", max_depth, 0, 100, true);
 }
 
 LandmarkCorrector::LandmarkCorrector(const LandmarkCorrectorParameters& parameters) : parameters_(parameters)
@@ -43,10 +43,10 @@ void LandmarkCorrector::reset(const Pose2D& map_from_odom)
 }
 
 bool LandmarkCorrector::observe(const Eigen::Vector2d& map_position, const Eigen::Vector2d& odom_position, double stamp,
-                                double range)
+                                double depth)
 {
-  if (!map_position.allFinite() || !odom_position.allFinite() || !std::isfinite(stamp) || !(range >= 0.0) ||
-      range > parameters_.max_range)
+  if (!map_position.allFinite() || !odom_position.allFinite() || !std::isfinite(stamp) || !(depth >= 0.0) ||
+      depth > parameters_.max_depth)
     return false;
   // Outlier: this sighting alone disagrees with the current estimate by more than max_jump.
   if ((map_from_odom_.apply(odom_position) - map_position).norm() > parameters_.max_jump)

@@ -24,10 +24,10 @@ void ObjectMemoryParameters::validate() const
     m << "ObjectMemoryParameters.averaging_window = " << averaging_window << " is outside [1, 1000]";
     throw std::invalid_argument(m.str());
   }
-  if (!(max_range > 0.0 && max_range <= 100.0))
+  if (!(max_depth > 0.0 && max_depth <= 100.0))
   {
     std::ostringstream m;
-    m << "ObjectMemoryParameters.max_range = " << max_range << " is outside (0, 100]";
+    m << "ObjectMemoryParameters.max_depth = " << max_depth << " is outside (0, 100]";
     throw std::invalid_argument(m.str());
   }
 }
@@ -44,17 +44,17 @@ void ObjectMemory::setParameters(const ObjectMemoryParameters& parameters)
 }
 
 ObjectMemory::Sighting ObjectMemory::observe(const std::string& label, const Eigen::Vector3d& position, double stamp,
-                                             double range)
+                                             double depth)
 {
   const std::string problem = biovision_common::ObjectLabel::problem(label);
   if (!problem.empty())  // the rule the database checks on load: what is remembered can be loaded again
     throw std::invalid_argument("ObjectMemory::observe: " + problem);
   if (!position.allFinite() || !std::isfinite(stamp))
     throw std::invalid_argument("ObjectMemory::observe: non-finite position or stamp for '" + label + "'");
-  if (!(range >= 0.0 && std::isfinite(range)))
-    throw std::invalid_argument("ObjectMemory::observe: negative or non-finite range for '" + label + "'");
+  if (!(depth >= 0.0 && std::isfinite(depth)))
+    throw std::invalid_argument("ObjectMemory::observe: negative or non-finite depth for '" + label + "'");
   Sighting sighting;
-  if (range > parameters_.max_range)
+  if (depth > parameters_.max_depth)
   {
     sighting.too_far = true;
     return sighting;

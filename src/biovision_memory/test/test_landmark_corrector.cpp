@@ -34,14 +34,14 @@ TEST(LandmarkCorrector, OneLandmarkCorrectsTheTranslationOnlyAndOutliersAreIgnor
   EXPECT_EQ(c.mapFromOdom().yaw, 0.0);
   EXPECT_FALSE(c.observe({2, 0}, {-3.0, 0.0}, 1));  // a 5 m jump: a mis-recognition
   EXPECT_FALSE(c.observe({NAN, 0}, {1, 0}, 1));
-  // Beyond max_range (3.5 m) or a negative range: not used, the estimate stays.
+  // Deeper than max_depth (3.5 m) or a negative depth: not used, the estimate stays.
   EXPECT_FALSE(c.observe({2, 0}, {1.5, 0.0}, 2, 3.6));
   EXPECT_FALSE(c.observe({2, 0}, {1.5, 0.0}, 2, -1.0));
   EXPECT_NEAR(c.mapFromOdom().x, 0.3, 1e-9);
   EXPECT_EQ(c.sightings(), 1u);
   EXPECT_TRUE(c.observe({2, 0}, {1.7, 0.2}, 3, 3.4));
   EXPECT_EQ(c.sightings(), 2u);
-  p.max_range = 0.0;
+  p.max_depth = 0.0;
   EXPECT_THROW(p.validate(), std::invalid_argument);
 }
 

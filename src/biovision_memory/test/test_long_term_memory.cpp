@@ -275,15 +275,15 @@ TEST(ObjectMemory, SeenElsewhereWeakensThenRelocates)
 }
 
 // mission.test: a first sighting at 5.4 m put the target 1.33 m off, and the memory starts at the first.
-TEST(ObjectMemory, SightingsBeyondMaxRangeChangeNothing)
+TEST(ObjectMemory, SightingsDeeperThanMaxDepthChangeNothing)
 {
   ObjectMemory om;
   EXPECT_TRUE(om.observe("box", {10.2, 2.4, 0}, 0, 5.4).too_far);
   EXPECT_EQ(om.find("box"), nullptr);  // not created
   EXPECT_FALSE(om.observe("box", {9.0, 1.8, 0}, 1, 4.0).too_far);
-  EXPECT_FALSE(om.observe("box", {9.1, 1.8, 0}, 2).too_far);  // range 0: unknown, used
+  EXPECT_FALSE(om.observe("box", {9.1, 1.8, 0}, 2).too_far);  // depth 0: unknown, used
   const int strength = om.find("box")->strength;
-  const auto s = om.observe("box", {7.2, 0.8, 0}, 3, 4.6);  // too far: neither weakens nor builds a candidate
+  const auto s = om.observe("box", {7.2, 0.8, 0}, 3, 5.1);  // too deep: neither weakens nor builds a candidate
   EXPECT_TRUE(s.too_far);
   EXPECT_EQ(om.find("box")->strength, strength);
   EXPECT_EQ(om.find("box")->candidate_strength, 0);
@@ -292,9 +292,9 @@ TEST(ObjectMemory, SightingsBeyondMaxRangeChangeNothing)
   EXPECT_THROW(om.observe("box", {9.0, 1.8, 0}, 4, -1.0), std::invalid_argument);
   EXPECT_THROW(om.observe("box", {9.0, 1.8, 0}, 4, std::nan("")), std::invalid_argument);
   ObjectMemoryParameters p;
-  p.max_range = 0.0;
+  p.max_depth = 0.0;
   EXPECT_THROW(p.validate(), std::invalid_argument);
-  p.max_range = 6.0;
+  p.max_depth = 6.0;
   om.setParameters(p);
   EXPECT_FALSE(om.observe("box", {9.0, 1.8, 0}, 5, 5.4).too_far);
 }

@@ -64,7 +64,7 @@ TEST(ParameterFile, MemoryYamlEqualsTheDefaults)
   const ObjectMemoryParameters objects;
   EXPECT_DOUBLE_EQ(y["objects"]["match_distance"].as<double>(), objects.match_distance);
   EXPECT_EQ(y["objects"]["averaging_window"].as<int>(), objects.averaging_window);
-  EXPECT_DOUBLE_EQ(y["objects"]["max_range"].as<double>(), objects.max_range);
+  EXPECT_DOUBLE_EQ(y["objects"]["max_depth"].as<double>(), objects.max_depth);
 
   const LandmarkCorrectorParameters c;
   const YAML::Node k = y["landmarks"];
@@ -73,7 +73,7 @@ TEST(ParameterFile, MemoryYamlEqualsTheDefaults)
   EXPECT_DOUBLE_EQ(k["gain"].as<double>(), c.gain);
   EXPECT_DOUBLE_EQ(k["min_spread"].as<double>(), c.min_spread);
   EXPECT_DOUBLE_EQ(k["max_jump"].as<double>(), c.max_jump);
-  EXPECT_DOUBLE_EQ(k["max_range"].as<double>(), c.max_range);
+  EXPECT_DOUBLE_EQ(k["max_depth"].as<double>(), c.max_depth);
 }
 
 int main(int argc, char** argv)

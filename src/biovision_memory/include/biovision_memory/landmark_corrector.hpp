@@ -18,11 +18,11 @@ struct LandmarkCorrectorParameters
   double min_spread =
       0.3;  ///< the heading is fitted only when the sightings lie this far from their centroid [m], (0, 100]
   double max_jump = 1.5;  ///< a sighting implying a correction larger than this is an outlier [m], (0, 100]
-  /// Sightings farther than this from the camera are not used [m], (0, 100]: the correction moves the whole
-  /// map, so it takes only the nearer, precise ones. In mission.test (perfect odometry: every correction is
-  /// error) sightings at 4.3-4.9 m were 0.7-1.6 m off and left the robot believing itself 0.28 m from
-  /// where it was; those at 3.1-3.5 m were 0.09-0.25 m off.
-  double max_range = 3.5;
+  /// Sightings deeper than this in the camera (optical z) are not used [m], (0, 100]: the correction moves
+  /// the whole map, so it takes only the nearer, precise ones. In mission.test (perfect odometry: every
+  /// correction is error) sightings at 4.3-4.9 m were 0.7-1.6 m off and left the robot believing itself
+  /// 0.28 m from where it was; those at 2.3-3.5 m were 0.09-0.25 m off.
+  double max_depth = 3.5;
 
   /// Throws std::invalid_argument naming the offending field and its range.
   void validate() const;
@@ -47,10 +47,10 @@ public:
   void setParameters(const LandmarkCorrectorParameters& parameters);
   const LandmarkCorrectorParameters& parameters() const { return parameters_; }
 
-  /// One sighting at `stamp` [s], `range` [m] from the camera (0: unknown, used). Returns false when it
-  /// was ignored (non-finite, negative range, beyond max_range, outlier).
+  /// One sighting at `stamp` [s], `depth` [m] in the camera (0: unknown, used). Returns false when it
+  /// was ignored (non-finite, negative depth, deeper than max_depth, outlier).
   bool observe(const Eigen::Vector2d& map_position, const Eigen::Vector2d& odom_position, double stamp,
-               double range = 0.0);
+               double depth = 0.0);
   /// The current map → odom (the identity before any sighting).
   const Pose2D& mapFromOdom() const { return map_from_odom_; }
   /// Starts from a known map → odom (e.g. loaded) and forgets the sightings.

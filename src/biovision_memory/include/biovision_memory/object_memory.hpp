@@ -21,11 +21,12 @@ struct ObjectMemoryParameters
   /// The remembered position is the running mean of the last this-many sightings' weight [1, 1000];
   /// fixed objects (landmarks, at M_R) no longer move, they correct the robot's pose instead.
   int averaging_window = 10;
-  /// Sightings farther than this from the camera [m] are not used, (0, 100]. Stereo depth scatters with the
-  /// range squared: ≈ 0.2 m at 3 m grows to ≈ match_distance at 4.5 m. In mission.test a sighting at 5.4 m
-  /// put the target 1.33 m off (later ones at 3.8–4.0 m: 0.13–0.18 m), and the first sighting is where the
-  /// memory starts: the target was remembered 1.16 m off in 1 of 3 runs.
-  double max_range = 4.5;
+  /// Sightings deeper than this in the camera (optical z) [m] are not used, (0, 100]. Stereo depth scatters
+  /// with the depth squared. In mission.test (14 runs) target sightings deeper than 4.7 m were all 0.8-1.5 m
+  /// off (9 of 9), those at 4.0-4.5 m half good, half 0.7-1.1 m off, those under 4 m 0.1-0.25 m off; the
+  /// first sighting is where the memory starts (the target was remembered 1.16 m off). 4.5 m also dropped
+  /// a good sighting, the only one at the hidden place, and the target stayed where it was shown: 5.0.
+  double max_depth = 5.0;
 
   /// Throws std::invalid_argument naming the offending field and its range.
   void validate() const;
@@ -67,18 +68,18 @@ public:
     bool landmark = false;                      ///< the object was a fixed landmark before this sighting
     Eigen::Vector3d remembered{0.0, 0.0, 0.0};  ///< its remembered position before the sighting
     bool relocated = false;                     ///< the memory moved to the new position
-    bool too_far = false;                       ///< beyond max_range: not used, nothing changed
+    bool too_far = false;                       ///< deeper than max_depth: not used, nothing changed
   };
 
   explicit ObjectMemory(const ObjectMemoryParameters& parameters = {});
   void setParameters(const ObjectMemoryParameters& parameters);
   const ObjectMemoryParameters& parameters() const { return parameters_; }
 
-  /// `label` seen at `position` (map frame) at `stamp` [s], `range` [m] from the camera (0: unknown, used).
-  /// Applies rule (c) to it first; a sighting beyond max_range changes nothing (Sighting::too_far). Throws
-  /// std::invalid_argument on a label biovision_common::ObjectLabel refuses (empty, over 256 bytes, control
-  /// characters), a non-finite position or a negative or non-finite range.
-  Sighting observe(const std::string& label, const Eigen::Vector3d& position, double stamp, double range = 0.0);
+  /// `label` seen at `position` (map frame) at `stamp` [s], `depth` [m] in the camera (0: unknown, used).
+  /// Applies rule (c) to it first; a sighting deeper than max_depth changes nothing (Sighting::too_far).
+  /// Throws std::invalid_argument on a label biovision_common::ObjectLabel refuses (empty, over 256 bytes,
+  /// control characters), a non-finite position or a negative or non-finite depth.
+  Sighting observe(const std::string& label, const Eigen::Vector3d& position, double stamp, double depth = 0.0);
   /// Rule (c) for every object; returns the labels removed.
   std::vector<std::string> forget(double stamp);
   /// Removes one object; false when unknown.

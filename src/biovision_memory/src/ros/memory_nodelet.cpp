@@ -106,7 +106,7 @@ void MemoryNodelet::readParameters(const ros::NodeHandle& pnh, Settings& s, Shor
   objects.rules = rules;
   param(pnh, "objects/match_distance", objects.match_distance);
   param(pnh, "objects/averaging_window", objects.averaging_window);
-  param(pnh, "objects/max_range", objects.max_range);
+  param(pnh, "objects/max_depth", objects.max_depth);
   objects.validate();
 
   param(pnh, "landmarks/window", corrector.window);
@@ -114,7 +114,7 @@ void MemoryNodelet::readParameters(const ros::NodeHandle& pnh, Settings& s, Shor
   param(pnh, "landmarks/gain", corrector.gain);
   param(pnh, "landmarks/min_spread", corrector.min_spread);
   param(pnh, "landmarks/max_jump", corrector.max_jump);
-  param(pnh, "landmarks/max_range", corrector.max_range);
+  param(pnh, "landmarks/max_depth", corrector.max_depth);
   corrector.validate();
 }
 
@@ -339,8 +339,7 @@ void MemoryNodelet::onObjects(const biovision_msgs::RecognizedObjectArrayConstPt
     const Eigen::Vector3d in_odom = odom_from_camera * p;
     const Pose2D& map_from_odom = corrector_->mapFromOdom();
     const Eigen::Vector2d xy = map_from_odom.apply(in_odom.head<2>());
-    const auto sighting = objects_->observe(o.label, {xy.x(), xy.y(), in_odom.z()}, msg->header.stamp.toSec(),
-                                            p.norm());
+    const auto sighting = objects_->observe(o.label, {xy.x(), xy.y(), in_odom.z()}, msg->header.stamp.toSec(), p.z());
     if (sighting.too_far)
     {
       ++far_sightings_;
@@ -348,7 +347,7 @@ void MemoryNodelet::onObjects(const biovision_msgs::RecognizedObjectArrayConstPt
     }
     ++sightings_;
     if (sighting.landmark && settings_.landmark_correction &&
-        corrector_->observe(sighting.remembered.head<2>(), in_odom.head<2>(), msg->header.stamp.toSec(), p.norm()))
+        corrector_->observe(sighting.remembered.head<2>(), in_odom.head<2>(), msg->header.stamp.toSec(), p.z()))
       ++landmark_sightings_;
   }
 }
@@ -697,7 +696,7 @@ void MemoryNodelet::details(diagnostic_updater::DiagnosticStatusWrapper& s)
   s.add("objects", objects_->objects().size());
   s.add("landmarks", landmarks);
   s.add("object sightings", sightings_);
-  s.add("object sightings beyond objects/max_range (not used)", far_sightings_);
+  s.add("object sightings deeper than objects/max_depth (not used)", far_sightings_);
   s.add("landmark sightings used", landmark_sightings_);
   const Pose2D& m = corrector_->mapFromOdom();
   s.addf("map->odom", "x %.3f m, y %.3f m, yaw %.4f rad", m.x, m.y, m.yaw);

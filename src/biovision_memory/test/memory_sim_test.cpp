@@ -180,6 +180,46 @@ TEST_F(MemorySim, ARecognisedObjectIsRememberedListedQueriedAndForgotten)
   EXPECT_TRUE(f.response.success);
   ASSERT_TRUE(query.call(q));
   EXPECT_FALSE(q.response.found);
+
+  // A position behind the camera (bad input: an error, the node keeps running) and one deeper than
+  // objects/max_depth (stereo too coarse there): neither is remembered.
+  for (const auto& [label, z] : {std::pair<std::string, double>{"behind_camera", -1.0}, {"too_deep", 8.0}})
+  {
+    for (int i = 0; i < 3; ++i)
+    {
+      // Stamped where tf has the camera, as above: a "no transform" skip would hide what is tested.
+      geometry_msgs::TransformStamped t;
+      ASSERT_TRUE(waitFor(
+          [&] {
+            try
+            {
+              t = buffer.lookupTransform("stereo_left_optical", "map", ros::Time(0));
+              return true;
+            }
+            catch (const tf2::TransformException&)
+            {
+              return false;
+            }
+          },
+          10.0));
+      biovision_msgs::RecognizedObjectArray msg;
+      msg.header.frame_id = "stereo_left_optical";
+      msg.header.stamp = t.header.stamp;
+      biovision_msgs::RecognizedObject o;
+      o.label = label;
+      o.has_position = true;
+      o.position.z = z;
+      msg.objects.push_back(o);
+      objects.publish(msg);
+      ros::WallDuration(0.3).sleep();
+    }
+  }
+  for (const char* label : {"behind_camera", "too_deep"})
+  {
+    q.request.label = label;
+    ASSERT_TRUE(query.call(q)) << label;  // still answering
+    EXPECT_FALSE(q.response.found) << label;
+  }
 }
 
 int main(int argc, char** argv)

@@ -314,12 +314,13 @@ int main(int argc, char** argv)
       const Eigen::Vector3d in_base = base_from_camera * measured;
       ++sightings;
       const Eigen::Vector2d map_true = truth_pose.apply(in_base.head<2>());
-      objects_true.observe(o->label, {map_true.x(), map_true.y(), in_base.z()}, t);
+      // The depth limits as the node applies them (z of the camera frame).
+      objects_true.observe(o->label, {map_true.x(), map_true.y(), in_base.z()}, t, z);
       const Eigen::Vector2d in_odom = odom.apply(in_base.head<2>());
-      objects_off.observe(o->label, {in_odom.x(), in_odom.y(), in_base.z()}, t);
+      objects_off.observe(o->label, {in_odom.x(), in_odom.y(), in_base.z()}, t, z);
       const Eigen::Vector2d corrected = corrector.mapFromOdom().apply(in_odom);
-      const auto s = objects_on.observe(o->label, {corrected.x(), corrected.y(), in_base.z()}, t);
-      if (s.landmark && corrector.observe(s.remembered.head<2>(), in_odom, t))
+      const auto s = objects_on.observe(o->label, {corrected.x(), corrected.y(), in_base.z()}, t, z);
+      if (!s.too_far && s.landmark && corrector.observe(s.remembered.head<2>(), in_odom, t, z))
         ++landmark_sightings;
     }
     {

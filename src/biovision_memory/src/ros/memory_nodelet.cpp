@@ -336,6 +336,11 @@ void MemoryNodelet::onObjects(const biovision_msgs::RecognizedObjectArrayConstPt
       diagnostics_.health().reportError(getName(), "skipping a recognised object: " + problem);
       continue;
     }
+    if (!(p.z() > 0.0))  // behind the camera: no stereo position (ObjectMemory::observe refuses a negative depth)
+    {
+      diagnostics_.health().reportError(getName(), "skipping a recognised object at z <= 0 in its camera frame");
+      continue;
+    }
     const Eigen::Vector3d in_odom = odom_from_camera * p;
     const Pose2D& map_from_odom = corrector_->mapFromOdom();
     const Eigen::Vector2d xy = map_from_odom.apply(in_odom.head<2>());

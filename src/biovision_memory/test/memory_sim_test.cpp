@@ -125,10 +125,9 @@ TEST_F(MemorySim, ARecognisedObjectIsRememberedListedQueriedAndForgotten)
   tf2_ros::TransformListener listener(buffer);
   ros::Publisher objects = nh_.advertise<biovision_msgs::RecognizedObjectArray>("objects", 10);
   ASSERT_TRUE(waitFor([&] { return objects.getNumSubscribers() > 0; }, 20.0));
-  for (int i = 0; i < 6; ++i)
-  {
-    geometry_msgs::TransformStamped t;
-    ASSERT_TRUE(waitFor(
+  // The camera's latest pose in map: messages are stamped where tf has it.
+  const auto camera_from_map = [&](geometry_msgs::TransformStamped& t) {
+    return waitFor(
         [&] {
           try
           {
@@ -140,7 +139,12 @@ TEST_F(MemorySim, ARecognisedObjectIsRememberedListedQueriedAndForgotten)
             return false;
           }
         },
-        10.0));
+        10.0);
+  };
+  for (int i = 0; i < 6; ++i)
+  {
+    geometry_msgs::TransformStamped t;
+    ASSERT_TRUE(camera_from_map(t));
     const Eigen::Vector3d in_optical = tf2::transformToEigen(t) * mug;
     biovision_msgs::RecognizedObjectArray msg;
     msg.header.frame_id = "stereo_left_optical";
@@ -189,19 +193,7 @@ TEST_F(MemorySim, ARecognisedObjectIsRememberedListedQueriedAndForgotten)
     {
       // Stamped where tf has the camera, as above: a "no transform" skip would hide what is tested.
       geometry_msgs::TransformStamped t;
-      ASSERT_TRUE(waitFor(
-          [&] {
-            try
-            {
-              t = buffer.lookupTransform("stereo_left_optical", "map", ros::Time(0));
-              return true;
-            }
-            catch (const tf2::TransformException&)
-            {
-              return false;
-            }
-          },
-          10.0));
+      ASSERT_TRUE(camera_from_map(t));
       biovision_msgs::RecognizedObjectArray msg;
       msg.header.frame_id = "stereo_left_optical";
       msg.header.stamp = t.header.stamp;

@@ -85,6 +85,7 @@ ObjectMemory::Sighting ObjectMemory::observe(const std::string& label, const Eig
     return sighting;
   }
   Object& o = it->second;
+  forgetCandidate(o, stamp);
   sighting.landmark = r.fixed(o.strength);
   sighting.remembered = o.position;
   // A running mean over the last averaging_window sightings' weight.
@@ -118,12 +119,14 @@ ObjectMemory::Sighting ObjectMemory::observe(const std::string& label, const Eig
     average(o.candidate_position, o.candidate_observations, position);
     o.candidate_strength = r.reinforce(o.candidate_strength);
     ++o.candidate_observations;
+    o.candidate_last_change = std::max(o.candidate_last_change, stamp);
   }
   else
   {
     o.candidate_position = position;
     o.candidate_strength = r.initial_strength;
     o.candidate_observations = 1;
+    o.candidate_last_change = stamp;
   }
   if (o.strength <= 0 || (o.candidate_observations >= kMinCandidateSightings && o.candidate_strength >= o.strength))
   {
@@ -138,11 +141,24 @@ ObjectMemory::Sighting ObjectMemory::observe(const std::string& label, const Eig
   return sighting;
 }
 
+void ObjectMemory::forgetCandidate(Object& o, double stamp) const
+{
+  if (o.candidate_strength <= 0)
+    return;
+  o.candidate_strength = parameters_.rules.decay(o.candidate_strength, o.candidate_last_change, stamp);
+  if (o.candidate_strength <= 0)
+  {
+    o.candidate_strength = 0;
+    o.candidate_observations = 0;
+  }
+}
+
 std::vector<std::string> ObjectMemory::forget(double stamp)
 {
   std::vector<std::string> removed;
   for (auto it = objects_.begin(); it != objects_.end();)
   {
+    forgetCandidate(it->second, stamp);  // not stored: never makes the object dirty
     const double before = it->second.last_change;
     it->second.strength = parameters_.rules.decay(it->second.strength, it->second.last_change, stamp);
     if (it->second.strength <= 0)
@@ -190,6 +206,7 @@ void ObjectMemory::rebaseTime(double now)
 {
   for (auto& [label, o] : objects_)
   {
+    o.candidate_last_change = std::min(o.candidate_last_change, now);  // not stored: not dirty
     if (o.last_change > now || o.last_seen > now || o.first_seen > now)
     {
       o.last_change = std::min(o.last_change, now);

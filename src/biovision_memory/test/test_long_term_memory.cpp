@@ -330,6 +330,39 @@ TEST(ObjectMemory, ScatteredSightingsElsewhereAndTheOldPlaceSeenAgainKeepIt)
   EXPECT_EQ(om.find("cup")->strength, 160);
 }
 
+// Two stray sightings that agree but come t_LTM apart (the breaker's case): the first candidate has been
+// forgotten by rule (c) when the second arrives, so they are one sighting each, not a move.
+TEST(ObjectMemory, ACandidatePlaceIsForgottenLikeAnyMemory)
+{
+  ObjectMemory om;
+  for (int i = 0; i < 5; ++i)
+    om.observe("cup", {0, 0, 0}, i);  // 200: a landmark, exempt from rule (c)
+  om.observe("cup", {3, 0, 0}, 10);   // old 160, candidate 40 at t = 10
+  ASSERT_EQ(om.find("cup")->candidate_strength, 40);
+  const double t_ltm = om.parameters().rules.forget_period;
+  // Without rule (c) on the candidate: old 160 -> 120 (one period) -> 80, candidate 80 of 2: moved.
+  const auto s = om.observe("cup", {3.1, 0, 0}, 10 + t_ltm + 1);
+  EXPECT_FALSE(s.relocated);
+  EXPECT_EQ(om.find("cup")->position, Eigen::Vector3d(0, 0, 0));
+  EXPECT_EQ(om.find("cup")->candidate_observations, 1u);  // restarted at (3.1, 0)
+  EXPECT_EQ(om.find("cup")->candidate_strength, 40);
+  EXPECT_EQ(om.find("cup")->strength, 80);
+  // forget() wears it too, without touching what the database stores.
+  om.takeChanges();
+  om.forget(10 + 2 * t_ltm + 2);
+  EXPECT_EQ(om.find("cup")->candidate_strength, 0);
+  EXPECT_EQ(om.find("cup")->candidate_observations, 0u);
+  // The old place itself decayed by rule (c) once more (80 -> 40): stored, so dirty.
+  EXPECT_EQ(om.find("cup")->strength, 40);
+  EXPECT_EQ(om.takeChanges().upserted.size(), 1u);
+  // Within t_LTM the candidate still counts (make demo's two sightings at the hiding place).
+  ObjectMemory demo;
+  for (int i = 0; i < 4; ++i)
+    demo.observe("target", {2, 0, 0}, i);
+  demo.observe("target", {9, 1.8, 0}, 10);
+  EXPECT_TRUE(demo.observe("target", {9.2, 1.8, 0}, 10 + t_ltm - 1).relocated);
+}
+
 TEST(ObjectMemory, ALandmarkMovesAfterThreeAgreeingSightingsElsewhere)
 {
   ObjectMemory om;

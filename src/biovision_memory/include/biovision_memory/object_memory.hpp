@@ -39,7 +39,8 @@ struct ObjectMemoryParameters
 /// sightings elsewhere also build a candidate place (P_R each, averaged like the position when they agree
 /// within match_distance, restarted when they do not, weakened by N_R by a sighting at the old place): the
 /// object moves there once the candidate holds kMinCandidateSightings sightings and is at least as
-/// strong as the weakened old place. Why: in `make demo` the target is shown at one place and hidden at
+/// strong as the weakened old place. The candidate forgets by rule (c) like any memory (t_LTM without a
+/// sighting there weakens it by N_R): two stray sightings far apart in time do not agree. Why: in `make demo` the target is shown at one place and hidden at
 /// another; 2-4 sightings at the old place and 2 at the new left the memory at the old place in 2 of 10
 /// runs (the search had found it, the report said 7.2 m off). The candidate is not stored in the
 /// database (a restart forgets it). An object at M_R is a landmark: its position is fixed. Not thread-safe.
@@ -57,6 +58,7 @@ public:
     Eigen::Vector3d candidate_position{0.0, 0.0, 0.0};
     int candidate_strength = 0;
     std::uint32_t candidate_observations = 0;
+    double candidate_last_change = 0.0;  ///< [s] rule (c)'s clock for the candidate
   };
   /// Sightings a candidate place needs before the object can move there: one sighting elsewhere is never
   /// enough (a false recognition), unless it weakens the old place to 0 (the thesis's rule; so scattered
@@ -80,7 +82,7 @@ public:
   /// Throws std::invalid_argument on a label biovision_common::ObjectLabel refuses (empty, over 256 bytes,
   /// control characters), a non-finite position or a negative or non-finite depth.
   Sighting observe(const std::string& label, const Eigen::Vector3d& position, double stamp, double depth = 0.0);
-  /// Rule (c) for every object; returns the labels removed.
+  /// Rule (c) for every object and candidate place; returns the labels removed.
   std::vector<std::string> forget(double stamp);
   /// Removes one object; false when unknown.
   bool remove(const std::string& label);
@@ -102,6 +104,9 @@ public:
   Changes takeChanges();
 
 private:
+  /// Rule (c) on o's candidate place up to `stamp` [s]; a candidate worn to 0 is gone.
+  void forgetCandidate(Object& o, double stamp) const;
+
   ObjectMemoryParameters parameters_;
   std::map<std::string, Object> objects_;
   std::map<std::string, bool> dirty_;  ///< label → still present

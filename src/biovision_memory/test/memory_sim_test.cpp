@@ -185,9 +185,16 @@ TEST_F(MemorySim, ARecognisedObjectIsRememberedListedQueriedAndForgotten)
   ASSERT_TRUE(query.call(q));
   EXPECT_FALSE(q.response.found);
 
-  // A position behind the camera (bad input: an error, the node keeps running) and one deeper than
-  // objects/max_depth (stereo too coarse there): neither is remembered.
-  for (const auto& [label, z] : {std::pair<std::string, double>{"behind_camera", -1.0}, {"too_deep", 8.0}})
+  // A position behind the camera (bad input: an error, the node keeps running), one deeper than
+  // objects/max_depth (stereo too coarse there) and one far outside any camera's view at a plausible depth
+  // (a corrupt x, 1e300 m): none is remembered.
+  struct BadSighting
+  {
+    std::string label;
+    double x, z;
+  };
+  for (const auto& [label, x, z] : {BadSighting{"behind_camera", 0.0, -1.0}, BadSighting{"too_deep", 0.0, 8.0},
+                                    BadSighting{"outside_view", 1e300, 2.0}})
   {
     for (int i = 0; i < 3; ++i)
     {
@@ -200,13 +207,14 @@ TEST_F(MemorySim, ARecognisedObjectIsRememberedListedQueriedAndForgotten)
       biovision_msgs::RecognizedObject o;
       o.label = label;
       o.has_position = true;
+      o.position.x = x;
       o.position.z = z;
       msg.objects.push_back(o);
       objects.publish(msg);
       ros::WallDuration(0.3).sleep();
     }
   }
-  for (const char* label : {"behind_camera", "too_deep"})
+  for (const char* label : {"behind_camera", "too_deep", "outside_view"})
   {
     q.request.label = label;
     ASSERT_TRUE(query.call(q)) << label;  // still answering

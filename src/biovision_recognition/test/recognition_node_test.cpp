@@ -59,60 +59,88 @@ protected:
       ros::Duration(0.1).sleep();
   }
 
-  /// Publishes the image (and regions with its stamp) until an objects message for it arrives.
-  biovision_msgs::RecognizedObjectArrayConstPtr show(const cv::Mat& image, const std::vector<cv::Rect>& regions = {},
-                                                     float disparity = 0.f)
+  static std_msgs::Header headerAt(const ros::Time& stamp)
   {
-    const ros::Time stamp = ros::Time::now();
     std_msgs::Header header;
     header.stamp = stamp;
     header.frame_id = "left_camera_optical_frame";
-    biovision_msgs::SalientRegionArray r;
-    r.header = header;
-    r.image_width = image.cols;
-    r.image_height = image.rows;
-    for (size_t i = 0; i < regions.size(); ++i)
+    return header;
+  }
+
+  /// camera_info and a flat disparity map d (depth f T / d = 200 * 0.12 / d everywhere), stamped `header`.
+  void publishDisparity(const std_msgs::Header& header, cv::Size size, float disparity)
+  {
+    sensor_msgs::CameraInfo info;
+    info.header = header;
+    info.width = size.width;
+    info.height = size.height;
+    info.P = {200, 0, 160, 0, 0, 200, 120, 0, 0, 0, 1, 0};
+    info_pub_.publish(info);
+    stereo_msgs::DisparityImage d;
+    d.header = header;
+    d.f = 200.f;
+    d.T = 0.12f;
+    d.min_disparity = 0.f;
+    d.max_disparity = 64.f;
+    d.image = *cv_bridge::CvImage(header, "32FC1", cv::Mat(size, CV_32F, cv::Scalar(disparity))).toImageMsg();
+    disparity_pub_.publish(d);
+  }
+
+  /// The regions (when any) and then the image, both stamped `header`.
+  void publishImage(const std_msgs::Header& header, const cv::Mat& image, const std::vector<cv::Rect>& regions)
+  {
+    if (!regions.empty())
     {
-      biovision_msgs::SalientRegion s;
-      s.rank = static_cast<uint32_t>(i);
-      s.box.x_offset = regions[i].x;
-      s.box.y_offset = regions[i].y;
-      s.box.width = regions[i].width;
-      s.box.height = regions[i].height;
-      r.regions.push_back(s);
-    }
-    for (int attempt = 0; attempt < 50; ++attempt)
-    {
-      if (!regions.empty())
-        regions_pub_.publish(r);
-      if (disparity > 0)
+      biovision_msgs::SalientRegionArray r;
+      r.header = header;
+      r.image_width = image.cols;
+      r.image_height = image.rows;
+      for (size_t i = 0; i < regions.size(); ++i)
       {
-        // A flat scene at disparity d: depth f T / d everywhere.
-        sensor_msgs::CameraInfo info;
-        info.header = header;
-        info.width = image.cols;
-        info.height = image.rows;
-        info.P = {200, 0, 160, 0, 0, 200, 120, 0, 0, 0, 1, 0};
-        info_pub_.publish(info);
-        stereo_msgs::DisparityImage d;
-        d.header = header;
-        d.f = 200.f;
-        d.T = 0.12f;
-        d.min_disparity = 0.f;
-        d.max_disparity = 64.f;
-        d.image =
-            *cv_bridge::CvImage(header, "32FC1", cv::Mat(image.size(), CV_32F, cv::Scalar(disparity))).toImageMsg();
-        disparity_pub_.publish(d);
+        biovision_msgs::SalientRegion s;
+        s.rank = static_cast<uint32_t>(i);
+        s.box.x_offset = regions[i].x;
+        s.box.y_offset = regions[i].y;
+        s.box.width = regions[i].width;
+        s.box.height = regions[i].height;
+        r.regions.push_back(s);
       }
+      regions_pub_.publish(r);
       ros::Duration(0.05).sleep();
-      image_pub_.publish(cv_bridge::CvImage(header, "bgr8", image).toImageMsg());
-      for (int wait = 0; wait < 20; ++wait)
+    }
+    image_pub_.publish(cv_bridge::CvImage(header, "bgr8", image).toImageMsg());
+  }
+
+  /// The objects message stamped `stamp`, once it arrives within `timeout` [s].
+  biovision_msgs::RecognizedObjectArrayConstPtr objectsAt(const ros::Time& stamp, double timeout)
+  {
+    for (double waited = 0; waited < timeout; waited += 0.02)
+    {
       {
-        ros::Duration(0.05).sleep();
         std::lock_guard<std::mutex> lock(mutex_);
         if (last_ && last_->header.stamp == stamp)
           return last_;
       }
+      ros::Duration(0.02).sleep();
+    }
+    return nullptr;
+  }
+
+  /// Publishes the image (and regions with its stamp) until an objects message for it arrives.
+  biovision_msgs::RecognizedObjectArrayConstPtr show(const cv::Mat& image, const std::vector<cv::Rect>& regions = {},
+                                                     float disparity = 0.f)
+  {
+    const std_msgs::Header header = headerAt(ros::Time::now());
+    for (int attempt = 0; attempt < 50; ++attempt)
+    {
+      if (disparity > 0)
+      {
+        publishDisparity(header, image.size(), disparity);
+        ros::Duration(0.05).sleep();  // before the image: its own map is at hand when it is recognised
+      }
+      publishImage(header, image, regions);
+      if (const auto seen = objectsAt(header.stamp, 1.0))
+        return seen;
     }
     return nullptr;
   }
@@ -210,6 +238,68 @@ TEST_F(RecognitionNode, LearnsRecognisesListsAndForgetsARealObject)
   ASSERT_TRUE(ros::service::call("recognition/list_objects", list));
   EXPECT_EQ(list.response.labels, (std::vector<std::string>{"obj4"}));
   std::filesystem::remove(memory_file);
+}
+
+// While stereo runs, an image's objects are located with the disparity map of the image's own instant,
+// which comes after the image (stereo is slower than recognition): the node used the latest map, one or two
+// frames older, and during a turn the matches sampled beside the object.
+TEST_F(RecognitionNode, LocatesObjectsWithTheDisparityMapOfTheirOwnImage)
+{
+  ros::AsyncSpinner spinner(1);
+  spinner.start();
+  const cv::Rect truth(170, 80, 128, 128);
+  const cv::Mat image = scene("obj14__0.png", truth.tl());
+  const std::vector<cv::Rect> regions{cv::Rect(150, 60, 160, 170)};
+  ASSERT_TRUE(show(image));
+  biovision_msgs::LearnObject learn;
+  learn.request.label = "obj14";
+  learn.request.box.x_offset = truth.x;
+  learn.request.box.y_offset = truth.y;
+  learn.request.box.width = truth.width;
+  learn.request.box.height = truth.height;
+  ASSERT_TRUE(ros::service::call("recognition/learn_object", learn));
+  ASSERT_TRUE(learn.response.success) << learn.response.message;
+
+  // Stereo runs (a map at t0, d = 40: 0.6 m); the image at t1 is recognised before its own map
+  // (d = 20: 1.2 m) arrives 0.15 s later: the objects wait for it.
+  const ros::Time t0 = ros::Time::now(), t1 = t0 + ros::Duration(0.1);
+  publishDisparity(headerAt(t0), image.size(), 40.f);
+  ros::Duration(0.1).sleep();
+  publishImage(headerAt(t1), image, regions);
+  ros::WallDuration(0.15).sleep();
+  publishDisparity(headerAt(t1), image.size(), 20.f);
+  auto seen = objectsAt(t1, 5.0);
+  ASSERT_TRUE(seen);
+  ASSERT_EQ(seen->objects.size(), 1u);
+  EXPECT_EQ(seen->objects[0].label, "obj14");
+  ASSERT_TRUE(seen->objects[0].has_position);
+  EXPECT_NEAR(seen->objects[0].position.z, 1.2, 1e-3) << "located with the map of t0, not t1";
+
+  // Its own map skipped by stereo: the next map (t2 + 0.1, d = 30: 0.8 m) shows it will not come, and the
+  // nearest in time settles it (t1's is 0.3 s away).
+  const ros::Time t2 = t1 + ros::Duration(0.3);
+  publishImage(headerAt(t2), image, regions);
+  ros::WallDuration(0.05).sleep();
+  publishDisparity(headerAt(t2 + ros::Duration(0.1)), image.size(), 30.f);
+  seen = objectsAt(t2, 5.0);
+  ASSERT_TRUE(seen);
+  ASSERT_EQ(seen->objects.size(), 1u);
+  ASSERT_TRUE(seen->objects[0].has_position);
+  EXPECT_NEAR(seen->objects[0].position.z, 0.8, 1e-3);
+
+  // No map after the image at all (stereo stalled): the objects still come, after max_disparity_wait,
+  // located with the nearest map within max_input_age.
+  const ros::Time t3 = t2 + ros::Duration(0.2);
+  publishImage(headerAt(t3), image, regions);
+  seen = objectsAt(t3, 5.0);
+  ASSERT_TRUE(seen);
+  ASSERT_EQ(seen->objects.size(), 1u);
+  ASSERT_TRUE(seen->objects[0].has_position);
+  EXPECT_NEAR(seen->objects[0].position.z, 0.8, 1e-3);
+
+  biovision_msgs::ForgetObject forget;
+  forget.request.label = "obj14";
+  ASSERT_TRUE(ros::service::call("recognition/forget_object", forget));
 }
 
 // Issue 23 item 6: an empty or zero-width box was taken as the whole image ("learned view 1"), and every

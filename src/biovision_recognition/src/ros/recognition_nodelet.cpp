@@ -36,6 +36,10 @@ void RecognitionNodelet::onInitNodelet()
                          ros::package::getPath("biovision_recognition") + "/models/v1_ldahash_128.bin");
   pnh.param<std::string>("memory_file", memory_file_, "");
   pnh.param("max_input_age", max_input_age_, 0.5);
+  pnh.param("max_disparity_wait", max_disparity_wait_, max_disparity_wait_);
+  if (!(max_disparity_wait_ >= 0.0 && max_disparity_wait_ <= 5.0))
+    throw std::invalid_argument("~max_disparity_wait = " + std::to_string(max_disparity_wait_) +
+                                " is outside [0, 5] s");
   max_input_pixels_ = biovision_ros_common::ImageMessageConverter::maxInputPixels(pnh);  // throws: fatal at start
 
   // Without a descriptor model the node cannot do anything: refuse to start rather than run blind
@@ -75,6 +79,10 @@ void RecognitionNodelet::onInitNodelet()
   // ~lazy false (LazyNodelet) subscribes at once: learning needs images even without a consumer.
   objects_pub_ = advertise<biovision_msgs::RecognizedObjectArray>(nh, "objects", 5);
   debug_pub_ = advertiseImage(*it_, "recognition/debug_image", 1);
+  pending_timer_ = nh.createWallTimer(ros::WallDuration(0.05), [this](const ros::WallTimerEvent&) {
+    std::lock_guard<std::mutex> lock(state_mutex_);
+    releasePending(false);
+  });
 }
 
 void RecognitionNodelet::subscribe()
@@ -92,6 +100,9 @@ void RecognitionNodelet::unsubscribe()
   regions_sub_.shutdown();
   disparity_sub_.shutdown();
   info_sub_.shutdown();
+  std::lock_guard<std::mutex> lock(state_mutex_);
+  releasePending(true);
+  disparities_.clear();
 }
 
 void RecognitionNodelet::reconfigure(RecognitionConfig& c, uint32_t /*level*/)
@@ -119,7 +130,8 @@ void RecognitionNodelet::regionsCallback(const biovision_msgs::SalientRegionArra
 void RecognitionNodelet::disparityCallback(const stereo_msgs::DisparityImageConstPtr& msg)
 {
   std::lock_guard<std::mutex> lock(state_mutex_);
-  disparity_ = msg;
+  disparities_.add(msg);
+  releasePending(false);
 }
 
 void RecognitionNodelet::infoCallback(const sensor_msgs::CameraInfoConstPtr& msg)
@@ -128,16 +140,16 @@ void RecognitionNodelet::infoCallback(const sensor_msgs::CameraInfoConstPtr& msg
   info_ = msg;
 }
 
-bool RecognitionNodelet::position(const RecognizedObject& object, const cv::Size& image_size,
-                                  geometry_msgs::Point& point)
+bool RecognitionNodelet::position(const stereo_msgs::DisparityImage& disparity, const RecognizedObject& object,
+                                  const cv::Size& image_size, geometry_msgs::Point& point)
 {
-  if (!disparity_ || !info_ || !(disparity_->f > 0) || !(std::abs(disparity_->T) > 0) || !(info_->P[0] > 0) ||
+  if (!info_ || !(disparity.f > 0) || !(std::abs(disparity.T) > 0) || !(info_->P[0] > 0) ||
       !(info_->P[5] > 0) || info_->width == 0 || info_->height == 0)
     return false;
   cv::Mat d;
   try
   {
-    d = biovision_ros_common::ImageMessageConverter::toFloat32(disparity_->image, max_input_pixels_);
+    d = biovision_ros_common::ImageMessageConverter::toFloat32(disparity.image, max_input_pixels_);
   }
   catch (const std::exception&)
   {
@@ -145,13 +157,13 @@ bool RecognitionNodelet::position(const RecognizedObject& object, const cv::Size
   }
   // Principal point and focal lengths at the disparity's resolution (it may differ from the image's).
   ObjectLocator::Camera camera;
-  camera.focal_length = disparity_->f;
-  camera.baseline = std::abs(disparity_->T);
+  camera.focal_length = disparity.f;
+  camera.baseline = std::abs(disparity.T);
   camera.fx = info_->P[0] * double(d.cols) / info_->width;
   camera.fy = info_->P[5] * double(d.rows) / info_->height;
   camera.cx = info_->P[2] * double(d.cols) / info_->width;
   camera.cy = info_->P[6] * double(d.rows) / info_->height;
-  camera.min_disparity = disparity_->min_disparity;
+  camera.min_disparity = disparity.min_disparity;
   cv::Point3d p;
   const ObjectLocator::Source source = ObjectLocator::locate(d, camera, image_size, object.box, object.match_points, p);
   if (source == ObjectLocator::Source::None)
@@ -189,7 +201,10 @@ void RecognitionNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
     std::lock_guard<std::mutex> lock(state_mutex_);
     // Newest last; a stamp before the newest (a looped bag, a restarted simulator) starts the history again.
     if (!recent_gray_.empty() && msg->header.stamp < recent_gray_.back().first)
+    {
       recent_gray_.clear();
+      releasePending(true);  // their disparities belong to the history that ended
+    }
     recent_gray_.emplace_back(msg->header.stamp, gray);
     while (recent_gray_.size() > kRecentImages)
       recent_gray_.pop_front();
@@ -218,8 +233,6 @@ void RecognitionNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
       diagnostics_.health().reportError(getName(), std::string("recognition failed: ") + ex.what());
       return;
     }
-    const bool disparity_recent = disparity_ &&
-                                  std::abs((disparity_->header.stamp - msg->header.stamp).toSec()) <= max_input_age_;
     for (const auto& f : found)
     {
       biovision_msgs::RecognizedObject o;
@@ -231,13 +244,12 @@ void RecognitionNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
       o.box.width = static_cast<uint32_t>(f.box.width);
       o.box.height = static_cast<uint32_t>(f.box.height);
       o.region_rank = f.region_rank;
-      o.has_position = disparity_recent && position(f, gray.size(), o.position);
-      out.objects.push_back(o);
+      out.objects.push_back(o);  // has_position and position: releasePending
     }
     last_objects_ = out.objects.size();  // details() reads it under the same lock
+    pending_.push_back({std::move(out), found, gray.size(), ros::WallTime::now()});
+    releasePending(false);
   }
-  objects_pub_.publish(out);
-  diagnostics_.tick();
 
   if (debug_pub_.getNumSubscribers() > 0)
   {
@@ -257,6 +269,42 @@ void RecognitionNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
                   cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 255, 0), 1);
     }
     debug_pub_.publish(cv_bridge::CvImage(msg->header, enc::BGR8, canvas).toImageMsg());
+  }
+}
+
+void RecognitionNodelet::releasePending(bool flush)
+{
+  while (!pending_.empty())
+  {
+    PendingObjects& p = pending_.front();
+    const ros::Time stamp = p.message.header.stamp;
+    stereo_msgs::DisparityImageConstPtr disparity;
+    if (!p.found.empty())
+    {
+      disparity = disparities_.exact(stamp);
+      if (disparity)
+        ++own_disparity_;
+      else
+      {
+        // Stereo running: its latest map is from about this instant, so this image's map is on its way.
+        const auto latest = disparities_.latest();
+        const bool stereo_running = latest && std::abs((latest->header.stamp - stamp).toSec()) <= max_input_age_;
+        const bool settled = flush || !stereo_running || disparities_.passed(stamp) ||
+                             pending_.size() > kMaxPending ||
+                             (ros::WallTime::now() - p.since).toSec() >= max_disparity_wait_;
+        if (!settled)
+          return;  // the rest wait behind it: objects go out in image order
+        disparity = disparities_.nearest(stamp, max_input_age_);
+        if (disparity)
+          ++other_disparity_;
+      }
+    }
+    for (size_t i = 0; i < p.found.size(); ++i)
+      p.message.objects[i].has_position =
+          disparity && position(*disparity, p.found[i], p.image_size, p.message.objects[i].position);
+    objects_pub_.publish(p.message);
+    diagnostics_.tick();
+    pending_.pop_front();
   }
 }
 
@@ -447,6 +495,9 @@ void RecognitionNodelet::details(diagnostic_updater::DiagnosticStatusWrapper& s)
   s.add("last keypoints", last_stats_.keypoints);
   s.add("positions from the matches' disparity", located_at_matches_);
   s.add("positions from the box median (too few matches with a disparity)", located_by_box_);
+  s.add("images located with their own disparity map", own_disparity_);
+  s.add("images located with a nearby disparity map (their own skipped or late)", other_disparity_);
+  s.add("images waiting for their disparity map", pending_.size());
   s.add("last kernel spectra built", last_stats_.kernel_spectra_built);
   s.add("kernel spectra built per region", regions_total_ ? double(spectra_built_total_) / regions_total_ : 0.0);
   s.add("last recognition time [ms]", last_stats_.milliseconds);

@@ -8,6 +8,7 @@
 #include <biovision_msgs/ForgetObject.h>
 #include <biovision_msgs/LearnObject.h>
 #include <biovision_msgs/ListObjects.h>
+#include <biovision_msgs/RecognizedObjectArray.h>
 #include <biovision_msgs/SalientRegionArray.h>
 #include <biovision_recognition/RecognitionConfig.h>
 #include <boost/thread/recursive_mutex.hpp>
@@ -24,13 +25,16 @@
 #include "biovision_recognition/object_recognizer.hpp"
 #include "biovision_ros_common/lazy_nodelet.hpp"
 #include "biovision_ros_common/nodelet_diagnostics.hpp"
+#include "biovision_ros_common/stamped_history.hpp"
 
 namespace biovision_recognition
 {
 /// ROS wrapper of ObjectRecognizer. For every `image` (the left camera) it looks in the latest
 /// `saliency/regions` (when recent; else the whole image) and publishes `objects`
 /// (biovision_msgs/RecognizedObjectArray) and, while watched, `recognition/debug_image`. With a recent
-/// `disparity` and `camera_info` each object also gets its position in the camera frame. Services
+/// `disparity` and `camera_info` each object also gets its position in the camera frame, from the
+/// disparity map of the image's own instant: while stereo runs, an image's objects wait for it (up to
+/// `~max_disparity_wait`, or until a later map shows it was skipped; then the nearest one), in order. Services
 /// `recognition/learn_object`, `recognition/forget_object`, `recognition/list_objects` edit the object
 /// memory at run time; `~memory_file` is loaded at start and rewritten (atomically) after every edit.
 class RecognitionNodelet : public biovision_ros_common::LazyNodelet
@@ -57,7 +61,22 @@ private:
   static constexpr uint32_t kMinBoxSide = 8;  ///< [px]: the smallest region ObjectRecognizer::describe takes
   /// The object's box centre in the camera frame at its matches' disparity (ObjectLocator); false without
   /// data. Counts where each depth came from, for diagnostics.
-  bool position(const RecognizedObject& object, const cv::Size& image_size, geometry_msgs::Point& point);
+  bool position(const stereo_msgs::DisparityImage& disparity, const RecognizedObject& object,
+                const cv::Size& image_size, geometry_msgs::Point& point);
+
+  /// A recognised image whose objects wait for the disparity map of the same instant.
+  struct PendingObjects
+  {
+    biovision_msgs::RecognizedObjectArray message;  ///< positions not yet filled
+    std::vector<RecognizedObject> found;            ///< the same objects, with their match points
+    cv::Size image_size;
+    ros::WallTime since;  ///< wall clock: a jump of ROS time (looped bag) never strands one
+  };
+  /// Publishes the pending objects, oldest first, as far as their disparity is settled: the map stamped
+  /// like their image; or, once that cannot come (a later map arrived, stereo not running, waited
+  /// max_disparity_wait_, too many pending, or `flush`), the nearest within max_input_age_ (or none).
+  /// Call with state_mutex_ held.
+  void releasePending(bool flush);
 
   std::unique_ptr<image_transport::ImageTransport> it_;
   image_transport::Subscriber image_sub_;
@@ -80,7 +99,12 @@ private:
   std::deque<std::pair<ros::Time, cv::Mat>> recent_gray_;
   static constexpr size_t kRecentImages = 8;
   biovision_msgs::SalientRegionArrayConstPtr regions_;
-  stereo_msgs::DisparityImageConstPtr disparity_;
+  /// The last disparity maps (shared, not copied): an image is located with the one of its own instant.
+  biovision_ros_common::StampedHistory<stereo_msgs::DisparityImage> disparities_{4};
+  std::deque<PendingObjects> pending_;
+  static constexpr size_t kMaxPending = 8;  ///< bounds the queue if stereo stalls without a time-out firing
+  double max_disparity_wait_ = 0.3;         ///< ~max_disparity_wait [s] (wall clock); 0: never wait
+  ros::WallTimer pending_timer_;            ///< releases what waited max_disparity_wait_ when no input comes
   sensor_msgs::CameraInfoConstPtr info_;
 
   boost::recursive_mutex reconfigure_mutex_;  // dynamic_reconfigure::Server takes a boost mutex; outlives it
@@ -90,6 +114,7 @@ private:
   long regions_total_ = 0, spectra_built_total_ = 0;  // since start: how often a region size missed the cache
   size_t last_objects_ = 0;
   long located_at_matches_ = 0, located_by_box_ = 0;  // positions by ObjectLocator::Source, since start
+  long own_disparity_ = 0, other_disparity_ = 0;      // images located with their own / a nearby map
   std::string model_id_;
 };
 }  // namespace biovision_recognition

@@ -348,8 +348,9 @@ void MemoryNodelet::onObjects(const biovision_msgs::RecognizedObjectArrayConstPt
     }
     if (std::abs(p.x()) > kMaxViewSlope * p.z() || std::abs(p.y()) > kMaxViewSlope * p.z())
     {
-      diagnostics_.health().reportError(getName(), "skipping a recognised object outside any camera's view (|x| or "
-                                                   "|y| over 2 z)");
+      diagnostics_.health().reportError(getName(),
+                                        "skipping a recognised object outside any camera's view (|x| or "
+                                        "|y| over 2 z)");
       continue;
     }
     const Eigen::Vector3d in_odom = odom_from_camera * p;

@@ -143,8 +143,8 @@ void RecognitionNodelet::infoCallback(const sensor_msgs::CameraInfoConstPtr& msg
 bool RecognitionNodelet::position(const stereo_msgs::DisparityImage& disparity, const RecognizedObject& object,
                                   const cv::Size& image_size, geometry_msgs::Point& point)
 {
-  if (!info_ || !(disparity.f > 0) || !(std::abs(disparity.T) > 0) || !(info_->P[0] > 0) ||
-      !(info_->P[5] > 0) || info_->width == 0 || info_->height == 0)
+  if (!info_ || !(disparity.f > 0) || !(std::abs(disparity.T) > 0) || !(info_->P[0] > 0) || !(info_->P[5] > 0) ||
+      info_->width == 0 || info_->height == 0)
     return false;
   cv::Mat d;
   try
@@ -289,8 +289,7 @@ void RecognitionNodelet::releasePending(bool flush)
         // Stereo running: its latest map is from about this instant, so this image's map is on its way.
         const auto latest = disparities_.latest();
         const bool stereo_running = latest && std::abs((latest->header.stamp - stamp).toSec()) <= max_input_age_;
-        const bool settled = flush || !stereo_running || disparities_.passed(stamp) ||
-                             pending_.size() > kMaxPending ||
+        const bool settled = flush || !stereo_running || disparities_.passed(stamp) || pending_.size() > kMaxPending ||
                              (ros::WallTime::now() - p.since).toSec() >= max_disparity_wait_;
         if (!settled)
           return;  // the rest wait behind it: objects go out in image order
@@ -300,8 +299,8 @@ void RecognitionNodelet::releasePending(bool flush)
       }
     }
     for (size_t i = 0; i < p.found.size(); ++i)
-      p.message.objects[i].has_position =
-          disparity && position(*disparity, p.found[i], p.image_size, p.message.objects[i].position);
+      p.message.objects[i].has_position = disparity &&
+                                          position(*disparity, p.found[i], p.image_size, p.message.objects[i].position);
     objects_pub_.publish(p.message);
     diagnostics_.tick();
     pending_.pop_front();

@@ -2,13 +2,13 @@
 
 #include <stdexcept>
 
-#include "biovision_recognition/projection_kernel.hpp"
-
 namespace biovision_recognition
 {
 V1Descriptor::V1Descriptor(const DescriptorModel& model) : model_(model), features_(model.layout)
 {
   model_.validate();
+  projection_ = PackedProjection(model_.projection.data(), static_cast<size_t>(model_.projection.rows()),
+                                 static_cast<size_t>(model_.projection.cols()));
 }
 
 V1FeaturePyramid::Parameters V1Descriptor::pyramidParameters() const
@@ -20,7 +20,7 @@ V1FeaturePyramid::Parameters V1Descriptor::pyramidParameters() const
   return p;
 }
 
-cv::Mat V1Descriptor::project(const cv::Mat& features) const
+cv::Mat V1Descriptor::project(const cv::Mat& features, ProjectionPath path) const
 {
   if (features.type() != CV_32F || features.cols != model_.projection.cols())
     throw std::invalid_argument("V1Descriptor: features must be CV_32F with " +
@@ -29,8 +29,7 @@ cv::Mat V1Descriptor::project(const cv::Mat& features) const
   if (features.rows == 0)
     return y;
   const cv::Mat x = features.isContinuous() ? features : features.clone();
-  projectRows(x.ptr<float>(), static_cast<size_t>(x.rows), static_cast<size_t>(x.cols), model_.projection.data(),
-              static_cast<size_t>(model_.bits()), y.ptr<float>());
+  projection_.project(x.ptr<float>(), static_cast<size_t>(x.rows), y.ptr<float>(), path);
   return y;
 }
 

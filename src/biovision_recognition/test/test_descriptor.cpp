@@ -8,7 +8,7 @@
 #include "biovision_common/hamming_distance.hpp"
 #include "biovision_recognition/lda_hash_trainer.hpp"
 #include "biovision_recognition/pooled_cell_features.hpp"
-#include "biovision_recognition/projection_kernel.hpp"
+#include "biovision_recognition/packed_projection.hpp"
 #include "biovision_recognition/v1_descriptor.hpp"
 #include "test_images.hpp"
 #include "biovision_common/hamming_distance.hpp"
@@ -254,26 +254,55 @@ TEST_F(TrainedDescriptor, ProvenanceRecordsTheTrainingCommand)
   EXPECT_NE(descriptor_->model().provenance.find("train_descriptor"), std::string::npos);
 }
 
-TEST(ProjectionKernel, EqualsADoublePrecisionReference)
+TEST(PackedProjection, EveryPathEqualsADoublePrecisionReference)
 {
   std::mt19937 rng(8);
   std::normal_distribution<float> g;
-  for (size_t rows : {size_t(1), size_t(5), size_t(9)})
-  {
-    const size_t inputs = 2500, outputs = 13;  // more than one tile, odd sizes
-    std::vector<float> x(rows * inputs), p(outputs * inputs), y(rows * outputs);
-    for (auto& v : x)
-      v = g(rng);
-    for (auto& v : p)
-      v = g(rng);
-    projectRows(x.data(), rows, inputs, p.data(), outputs, y.data());
-    for (size_t i = 0; i < rows; ++i)
-      for (size_t b = 0; b < outputs; ++b)
+  // Odd sizes: rows not a multiple of the row group (6) or the task (48), more than one input chunk (256),
+  // outputs below, at and above the 64-column padding.
+  for (size_t outputs : {size_t(13), size_t(64), size_t(128), size_t(130)})
+    for (size_t rows : {size_t(1), size_t(5), size_t(7), size_t(53)})
+    {
+      const size_t inputs = 600;
+      std::vector<float> x(rows * inputs), p(outputs * inputs);
+      for (auto& v : x)
+        v = g(rng);
+      for (auto& v : p)
+        v = g(rng);
+      const PackedProjection projection(p.data(), outputs, inputs);
+      for (ProjectionPath path : availableProjectionPaths())
       {
-        double ref = 0.0;
-        for (size_t k = 0; k < inputs; ++k)
-          ref += double(x[i * inputs + k]) * p[b * inputs + k];
-        EXPECT_NEAR(y[i * outputs + b], ref, 1e-3 * std::sqrt(double(inputs)));
+        std::vector<float> y(rows * outputs + 1, -7.f);  // one guard value past the end
+        projection.project(x.data(), rows, y.data(), path);
+        EXPECT_EQ(y.back(), -7.f) << toString(path) << " wrote past the end";
+        double worst = 0.0;
+        for (size_t i = 0; i < rows; ++i)
+          for (size_t b = 0; b < outputs; ++b)
+          {
+            double ref = 0.0;
+            for (size_t k = 0; k < inputs; ++k)
+              ref += double(x[i * inputs + k]) * p[b * inputs + k];
+            worst = std::max(worst, std::abs(y[i * outputs + b] - ref));
+          }
+        EXPECT_LT(worst, 1e-3 * std::sqrt(double(inputs)))
+            << toString(path) << ", " << rows << " rows x " << outputs << " outputs";
       }
-  }
+    }
+  EXPECT_EQ(availableProjectionPaths().front(), ProjectionPath::Generic);
+  EXPECT_EQ(bestProjectionPath(), availableProjectionPaths().back());
+  EXPECT_THROW(PackedProjection(nullptr, 0, 10), std::invalid_argument);
+}
+
+TEST_F(TrainedDescriptor, ProjectionsAgreeOnEveryPath)
+{
+  const cv::Mat x = [&] {
+    cv::Mat m(37, static_cast<int>(descriptor_->model().projection.cols()), CV_32F);
+    cv::randn(m, 0.0, 1.0);
+    return m;
+  }();
+  const cv::Mat reference = descriptor_->project(x, ProjectionPath::Generic);
+  const double scale = cv::norm(reference, cv::NORM_INF);
+  ASSERT_GT(scale, 0.0);
+  for (ProjectionPath path : availableProjectionPaths())  // float sums in another order: rounding only
+    EXPECT_LT(cv::norm(descriptor_->project(x, path), reference, cv::NORM_INF), 1e-5 * scale) << toString(path);
 }

@@ -1,7 +1,6 @@
 // Hamming matching throughput: ours (run-time dispatched SIMD, blocked, threaded) against
 // cv::BFMatcher(NORM_HAMMING) on the same 128-bit codes in the same run; plus multi-index hashing.
 
-#include <chrono>
 #include <iomanip>
 #include <iostream>
 #include <random>
@@ -12,6 +11,7 @@
 #include "biovision_recognition/hamming_matcher.hpp"
 #include "biovision_recognition/multi_index_hash.hpp"
 #include "biovision_common/tool_options.hpp"
+#include "best_seconds.hpp"
 
 using namespace biovision_recognition;
 
@@ -44,18 +44,6 @@ void makeData(size_t n_lib, size_t n_query, std::mt19937_64& rng, BinaryCodeSet&
   }
 }
 
-template <typename F>
-double bestSeconds(int repeats, F&& f)
-{
-  double best = 1e30;
-  for (int r = 0; r < repeats; ++r)
-  {
-    const auto t0 = std::chrono::steady_clock::now();
-    f();
-    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-  }
-  return best;
-}
 }  // namespace
 
 int main(int argc, char** argv)

@@ -34,6 +34,7 @@
 #include "biovision_common/cpu_features.hpp"
 #include "biovision_common/hamming_distance.hpp"
 #include "biovision_common/tool_options.hpp"
+#include "biovision_recognition/packed_projection.hpp"
 #include "biovision_ros_common/processing_times.hpp"
 #include "biovision_stereo/cost_simd.hpp"
 #include "biovision_stereo/hamming.hpp"
@@ -604,12 +605,14 @@ int main(int argc, char** argv)
   figures["manager_threads"] = manager_threads > 0 ? manager_threads
                                                    : static_cast<int>(std::thread::hardware_concurrency());
   // Which instruction set each SIMD stage of ours ran (the same libraries are loaded into this process).
-  figures["simd"] = {{"cpu", biovision_common::CpuFeatures::host().describe()},
-                     {"biobin_cost_volume", biovision_stereo::costSimdName(biovision_stereo::bestCostSimd())},
-                     {"biobin_hamming", biovision_stereo::Hamming::pathName()},
-                     {"biobin_semi_global_aggregation", biovision_stereo::SemiGlobalAggregation::name(
-                                                            biovision_stereo::SemiGlobalAggregation::bestSimd())},
-                     {"recognition_matcher", biovision_common::toString(biovision_common::bestHammingPath())}};
+  figures["simd"] = {
+      {"cpu", biovision_common::CpuFeatures::host().describe()},
+      {"biobin_cost_volume", biovision_stereo::costSimdName(biovision_stereo::bestCostSimd())},
+      {"biobin_hamming", biovision_stereo::Hamming::pathName()},
+      {"biobin_semi_global_aggregation",
+       biovision_stereo::SemiGlobalAggregation::name(biovision_stereo::SemiGlobalAggregation::bestSimd())},
+      {"recognition_projection", biovision_recognition::toString(biovision_recognition::bestProjectionPath())},
+      {"recognition_matcher", biovision_common::toString(biovision_common::bestHammingPath())}};
   figures["in_flight"] = in_flight;
   int status = 0;
   std::stringstream list(phases_list);

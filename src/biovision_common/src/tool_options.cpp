@@ -33,6 +33,36 @@ ToolOptions::ToolOptions(const std::string& tool, const std::string& description
   app_.option_defaults()->always_capture_default();  // --help prints "--threads INT=2"
 }
 
+namespace
+{
+template <typename Json>
+bool writeJsonSaying(const std::string& tool, const std::string& path, const Json& document)
+{
+  if (path.empty())
+    return true;
+  try
+  {
+    writeJsonFile(path, document);
+    return true;
+  }
+  catch (const FileError& e)
+  {
+    std::cerr << tool << ": " << e.what() << "\n";
+    return false;
+  }
+}
+}  // namespace
+
+bool ToolOptions::writeJson(const std::string& path, const nlohmann::json& document) const
+{
+  return writeJsonSaying(app_.get_name(), path, document);
+}
+
+bool ToolOptions::writeJson(const std::string& path, const nlohmann::ordered_json& document) const
+{
+  return writeJsonSaying(app_.get_name(), path, document);
+}
+
 void ToolOptions::parse(int argc, char** argv)
 {
   std::vector<char*> args;

@@ -441,17 +441,7 @@ int main(int argc, char** argv)
       "landmark filter's gain, window_time, min_spread) were tuned on seed 1 with 1 loop; reported here on "
       "seed 2 with 2 loops.";
   std::cout << j.dump(2) << "\n";
-  if (!json_path.empty())
-  {
-    try
-    {
-      biovision_common::writeJsonFile(json_path, j);
-    }
-    catch (const biovision_common::FileError& e)
-    {
-      std::cerr << "memory_eval: " << e.what() << "\n";
-      return 1;
-    }
-  }
+  if (!options.writeJson(json_path, j))
+    return 1;
   return 0;
 }

@@ -153,17 +153,7 @@ int main(int argc, char** argv)
   figures["mih_r16_speedup"] = brute_s / small_radii[1].second;
   figures["radius_hits_equal"] = mih_hits == brute_hits;
   figures["notes"] = "goal: >= 15x BFMatcher with 2 threads each";
-  if (!json_path.empty())
-  {
-    try
-    {
-      biovision_common::writeJsonFile(json_path, figures);
-    }
-    catch (const biovision_common::FileError& e)
-    {
-      std::cerr << "matcher_bench: " << e.what() << "\n";
-      return 1;
-    }
-  }
+  if (!options.writeJson(json_path, figures))
+    return 1;
   return disagreements == 0 && mih_hits == brute_hits ? 0 : 1;
 }

@@ -86,17 +86,7 @@ int main(int argc, char** argv)
   figures["notes"] =
       "x = random rows, P = the committed model's projection; ratios = peer time / ours (> 1: "
       "faster); the paths below the default one are what a CPU without its extension would run";
-  if (!json_path.empty())
-  {
-    try
-    {
-      biovision_common::writeJsonFile(json_path, figures);
-    }
-    catch (const biovision_common::FileError& e)
-    {
-      std::cerr << "projection_bench: " << e.what() << "\n";
-      return 1;
-    }
-  }
+  if (!options.writeJson(json_path, figures))
+    return 1;
   return worst_difference < 1e-4 ? 0 : 1;
 }

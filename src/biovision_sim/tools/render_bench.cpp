@@ -52,17 +52,7 @@ int main(int argc, char** argv)
   figures["triangles"] = SceneRenderer(world, 1).triangles();
   figures["notes"] = "One core. Goal: >= 30 stereo frames/s at 320x240.";
   std::cout << figures.dump(2) << "\n";
-  if (!json_path.empty())
-  {
-    try
-    {
-      biovision_common::writeJsonFile(json_path, figures);
-    }
-    catch (const biovision_common::FileError& e)
-    {
-      std::cerr << "render_bench: " << e.what() << "\n";
-      return 1;
-    }
-  }
+  if (!options.writeJson(json_path, figures))
+    return 1;
   return 0;
 }

@@ -177,17 +177,7 @@ int main(int argc, char** argv)
   figures["notes"] = "Ratios > 1: the mandated stage alone takes longer than the peer's whole computation.";
   figures["scenes"] = scenes;
   std::cout << figures.dump(2) << "\n";
-  if (!json_path.empty())
-  {
-    try
-    {
-      biovision_common::writeJsonFile(json_path, figures);
-    }
-    catch (const biovision_common::FileError& e)
-    {
-      std::cerr << "stage_floor: " << e.what() << "\n";
-      return 1;
-    }
-  }
+  if (!options.writeJson(json_path, figures))
+    return 1;
   return 0;
 }

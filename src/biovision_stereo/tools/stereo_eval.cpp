@@ -394,17 +394,7 @@ int main(int argc, char** argv)
   }
   results["scenes"] = scenes_json;
   std::cout << results.dump(2) << "\n";
-  if (!json_path.empty())
-  {
-    try
-    {
-      biovision_common::writeJsonFile(json_path, results);
-    }
-    catch (const biovision_common::FileError& e)
-    {
-      std::cerr << "stereo_eval: " << e.what() << "\n";
-      return 1;
-    }
-  }
+  if (!options.writeJson(json_path, results))
+    return 1;
   return 0;
 }

@@ -108,17 +108,7 @@ int main(int argc, char** argv)
   figures["keypoints"] = keypoints;
   figures["max_rel_err"] = max_rel_err;
   std::cout << figures.dump(2) << "\n";
-  if (!json_path.empty())
-  {
-    try
-    {
-      biovision_common::writeJsonFile(json_path, figures);
-    }
-    catch (const biovision_common::FileError& e)
-    {
-      std::cerr << "v1_bench: " << e.what() << "\n";
-      return 1;
-    }
-  }
+  if (!options.writeJson(json_path, figures))
+    return 1;
   return 0;
 }

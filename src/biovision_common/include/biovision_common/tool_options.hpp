@@ -34,6 +34,11 @@ public:
   /// The options as given ("--threads 2 --json out.json"), to record how a result was made.
   const std::string& command() const { return command_; }
 
+  /// Writes a tool's --json document (writeJsonFile) unless `path` is empty; on a FileError prints
+  /// "<tool>: <why>" to stderr and returns false, so the tool can exit 1.
+  bool writeJson(const std::string& path, const nlohmann::json& document) const;
+  bool writeJson(const std::string& path, const nlohmann::ordered_json& document) const;
+
 private:
   CLI::App app_;
   std::string command_;

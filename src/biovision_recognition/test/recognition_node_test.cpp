@@ -261,12 +261,13 @@ TEST_F(RecognitionNode, LocatesObjectsWithTheDisparityMapOfTheirOwnImage)
   ASSERT_TRUE(learn.response.success) << learn.response.message;
 
   // Stereo runs (a map at t0, d = 40: 0.6 m); the image at t1 is recognised before its own map
-  // (d = 20: 1.2 m) arrives 0.15 s later: the objects wait for it.
+  // (d = 20: 1.2 m) arrives 0.3 s later: the objects wait for it (recognition_node.test: max_disparity_wait
+  // 1.5 s, so a loaded machine's scheduling delays stay far inside the margins; the stamps are synthetic).
   const ros::Time t0 = ros::Time::now(), t1 = t0 + ros::Duration(0.1);
   publishDisparity(headerAt(t0), image.size(), 40.f);
-  ros::Duration(0.1).sleep();
+  ros::WallDuration(0.5).sleep();  // the t0 map is there before the image: stereo is running
   publishImage(headerAt(t1), image, regions);
-  ros::WallDuration(0.15).sleep();
+  ros::WallDuration(0.3).sleep();
   publishDisparity(headerAt(t1), image.size(), 20.f);
   auto seen = objectsAt(t1, 5.0);
   ASSERT_TRUE(seen);
@@ -287,8 +288,8 @@ TEST_F(RecognitionNode, LocatesObjectsWithTheDisparityMapOfTheirOwnImage)
   ASSERT_TRUE(seen->objects[0].has_position);
   EXPECT_NEAR(seen->objects[0].position.z, 0.8, 1e-3);
 
-  // No map after the image at all (stereo stalled): the objects still come, after max_disparity_wait,
-  // located with the nearest map within max_input_age.
+  // No map after the image at all (stereo stalled): the objects still come, after max_disparity_wait
+  // (1.5 s), located with the nearest map within max_input_age.
   const ros::Time t3 = t2 + ros::Duration(0.2);
   publishImage(headerAt(t3), image, regions);
   seen = objectsAt(t3, 5.0);

@@ -90,7 +90,9 @@ void RecognitionNodelet::subscribe()
   ros::NodeHandle& nh = getNodeHandle();
   image_sub_ = it_->subscribe("image", 2, &RecognitionNodelet::imageCallback, this, imageHints());
   regions_sub_ = nh.subscribe("saliency/regions", 5, &RecognitionNodelet::regionsCallback, this);
-  disparity_sub_ = nh.subscribe("disparity", 2, &RecognitionNodelet::disparityCallback, this);
+  // As deep as the history: maps queue up while an image is recognised, and the oldest is often the one an
+  // image waits for.
+  disparity_sub_ = nh.subscribe("disparity", 4, &RecognitionNodelet::disparityCallback, this);
   info_sub_ = nh.subscribe("camera_info", 2, &RecognitionNodelet::infoCallback, this);
 }
 

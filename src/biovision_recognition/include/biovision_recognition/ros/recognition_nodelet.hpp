@@ -100,7 +100,7 @@ private:
   static constexpr size_t kRecentImages = 8;
   biovision_msgs::SalientRegionArrayConstPtr regions_;
   /// The last disparity maps (shared, not copied): an image is located with the one of its own instant.
-  biovision_ros_common::StampedHistory<stereo_msgs::DisparityImage> disparities_{4};
+  biovision_ros_common::StampedHistory<stereo_msgs::DisparityImage> disparities_{4};  // = the subscriber's queue
   std::deque<PendingObjects> pending_;
   static constexpr size_t kMaxPending = 8;  ///< bounds the queue if stereo stalls without a time-out firing
   double max_disparity_wait_ = 0.3;         ///< ~max_disparity_wait [s] (wall clock); 0: never wait

@@ -22,9 +22,9 @@ constexpr std::size_t kRowsPerTask = 8 * kRowGroup;
 
 // Each kernel: y (rows x padded, row-major) = x (rows x inputs) * pt (inputs x padded); y is overwritten.
 
-// Eigen's blocked GEMM: on the baseline x86-64 (SSE2) it ran at 66-78 GFLOP/s on one core here, ahead of
-// the dot-product kernel before PackedProjection (33). One call, one thread: split over 2 threads (by rows
-// or by columns) it was 0.4-0.95x of itself in projection_bench, each thread packing its whole operand.
+// Eigen's blocked GEMM (parallelised by Eigen itself: this library links OpenMP): it ran at 66-78 GFLOP/s
+// here, ahead of the dot-product kernel before PackedProjection (33). One call: split further over two
+// cv::parallel_for_ tasks (by rows or by columns) it was 0.4-0.95x of itself in projection_bench.
 void projectGeneric(const float* x, std::size_t rows, std::size_t inputs, const float* pt, std::size_t padded, float* y)
 {
   using RowMajor = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;

@@ -22,7 +22,7 @@ namespace
 const char* kDescription =
     "Projects --rows feature rows (random, the model's length) with the descriptor model's P: ours\n"
     "(PackedProjection) on every kernel path this CPU runs, cv::gemm (GEMM_2_T) and Eigen (x * P^T) with --threads\n"
-    "OpenCV threads (Eigen: its own, one without OpenMP); best of --repeats. 400 rows = the recogniser's\n"
+    "OpenCV threads (Eigen: its own OpenMP threads); best of --repeats. 400 rows = the recogniser's\n"
     "max_keypoints per region. Prints a table; --json writes the figures.";
 }  // namespace
 

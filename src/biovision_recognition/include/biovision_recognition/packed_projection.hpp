@@ -29,7 +29,7 @@ ProjectionPath bestProjectionPath();
 /// multiplies it into a whole vector of outputs, so the accumulators stay in registers with no reduction
 /// (the register-blocked outer-product form of BLAS kernels), and the inputs are walked in chunks that
 /// keep their slice of P in L2. The SIMD paths run row blocks in parallel (cv::parallel_for_); the Generic
-/// path is one Eigen call on one thread (two were slower).
+/// path is one Eigen call (Eigen's own OpenMP threads; split into cv::parallel_for_ tasks it was slower).
 class PackedProjection
 {
 public:

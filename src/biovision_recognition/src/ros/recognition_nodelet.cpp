@@ -142,20 +142,19 @@ void RecognitionNodelet::infoCallback(const sensor_msgs::CameraInfoConstPtr& msg
   info_ = msg;
 }
 
-bool RecognitionNodelet::position(const stereo_msgs::DisparityImage& disparity, const RecognizedObject& object,
-                                  const cv::Size& image_size, geometry_msgs::Point& point)
+void RecognitionNodelet::locate(const stereo_msgs::DisparityImage& disparity, PendingObjects& pending)
 {
   if (!info_ || !(disparity.f > 0) || !(std::abs(disparity.T) > 0) || !(info_->P[0] > 0) || !(info_->P[5] > 0) ||
       info_->width == 0 || info_->height == 0)
-    return false;
-  cv::Mat d;
+    return;
+  cv::Mat d;  // once per image: a 16UC1 map is converted, a 32FC1 one only wrapped
   try
   {
     d = biovision_ros_common::ImageMessageConverter::toFloat32(disparity.image, max_input_pixels_);
   }
   catch (const std::exception&)
   {
-    return false;
+    return;
   }
   // Principal point and focal lengths at the disparity's resolution (it may differ from the image's).
   ObjectLocator::Camera camera;
@@ -166,15 +165,21 @@ bool RecognitionNodelet::position(const stereo_msgs::DisparityImage& disparity, 
   camera.cx = info_->P[2] * double(d.cols) / info_->width;
   camera.cy = info_->P[6] * double(d.rows) / info_->height;
   camera.min_disparity = disparity.min_disparity;
-  cv::Point3d p;
-  const ObjectLocator::Source source = ObjectLocator::locate(d, camera, image_size, object.box, object.match_points, p);
-  if (source == ObjectLocator::Source::None)
-    return false;
-  ++(source == ObjectLocator::Source::Matches ? located_at_matches_ : located_by_box_);
-  point.x = p.x;
-  point.y = p.y;
-  point.z = p.z;
-  return true;
+  for (size_t i = 0; i < pending.found.size(); ++i)
+  {
+    const RecognizedObject& object = pending.found[i];
+    cv::Point3d p;
+    const ObjectLocator::Source source = ObjectLocator::locate(d, camera, pending.image_size, object.box,
+                                                               object.match_points, p);
+    if (source == ObjectLocator::Source::None)
+      continue;
+    ++(source == ObjectLocator::Source::Matches ? located_at_matches_ : located_by_box_);
+    auto& o = pending.message.objects[i];
+    o.has_position = true;
+    o.position.x = p.x;
+    o.position.y = p.y;
+    o.position.z = p.z;
+  }
 }
 
 void RecognitionNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
@@ -300,9 +305,8 @@ void RecognitionNodelet::releasePending(bool flush)
           ++other_disparity_;
       }
     }
-    for (size_t i = 0; i < p.found.size(); ++i)
-      p.message.objects[i].has_position = disparity &&
-                                          position(*disparity, p.found[i], p.image_size, p.message.objects[i].position);
+    if (disparity && !p.found.empty())
+      locate(*disparity, p);
     objects_pub_.publish(p.message);
     diagnostics_.tick();
     pending_.pop_front();

@@ -13,7 +13,6 @@
 #include <biovision_recognition/RecognitionConfig.h>
 #include <boost/thread/recursive_mutex.hpp>
 #include <dynamic_reconfigure/server.h>
-#include <geometry_msgs/Point.h>
 #include <image_transport/image_transport.h>
 #include <nodelet/nodelet.h>
 #include <ros/ros.h>
@@ -59,11 +58,6 @@ private:
   /// Why a learn box cannot be used ("" when it can): zero-area, under kMinBoxSide, or outside the image.
   static std::string boxProblem(const sensor_msgs::RegionOfInterest& box, const cv::Size& image);
   static constexpr uint32_t kMinBoxSide = 8;  ///< [px]: the smallest region ObjectRecognizer::describe takes
-  /// The object's box centre in the camera frame at its matches' disparity (ObjectLocator); false without
-  /// data. Counts where each depth came from, for diagnostics.
-  bool position(const stereo_msgs::DisparityImage& disparity, const RecognizedObject& object,
-                const cv::Size& image_size, geometry_msgs::Point& point);
-
   /// A recognised image whose objects wait for the disparity map of the same instant.
   struct PendingObjects
   {
@@ -77,6 +71,10 @@ private:
   /// max_disparity_wait_, too many pending, or `flush`), the nearest within max_input_age_ (or none).
   /// Call with state_mutex_ held.
   void releasePending(bool flush);
+  /// Each pending object's box centre in the camera frame at its matches' disparity (ObjectLocator), from
+  /// one conversion of `disparity`; objects without data keep has_position false. Counts where each depth
+  /// came from, for diagnostics.
+  void locate(const stereo_msgs::DisparityImage& disparity, PendingObjects& pending);
 
   std::unique_ptr<image_transport::ImageTransport> it_;
   image_transport::Subscriber image_sub_;

@@ -24,7 +24,6 @@ namespace
 {
 // A recognised object's |x| / z and |y| / z in its optical frame can be at most this (63 deg off the axis):
 // wider than any lens of the stereo cameras here (Bumblebee-2's widest, 2.5 mm: 97 deg across, slope 1.1).
-// Larger means a corrupt position, which would otherwise be remembered with absurd map coordinates.
 constexpr double kMaxViewSlope = 2.0;
 
 Pose2D planar(const Eigen::Isometry3d& T)
@@ -341,16 +340,13 @@ void MemoryNodelet::onObjects(const biovision_msgs::RecognizedObjectArrayConstPt
       diagnostics_.health().reportError(getName(), "skipping a recognised object: " + problem);
       continue;
     }
-    if (!(p.z() > 0.0))  // behind the camera: no stereo position (ObjectMemory::observe refuses a negative depth)
-    {
-      diagnostics_.health().reportError(getName(), "skipping a recognised object at z <= 0 in its camera frame");
-      continue;
-    }
-    if (std::abs(p.x()) > kMaxViewSlope * p.z() || std::abs(p.y()) > kMaxViewSlope * p.z())
+    // Behind the camera (no stereo position; ObjectMemory::observe refuses a negative depth) or outside any
+    // camera's view: a corrupt position, which would be remembered at absurd map coordinates.
+    if (!(p.z() > 0.0) || std::abs(p.x()) > kMaxViewSlope * p.z() || std::abs(p.y()) > kMaxViewSlope * p.z())
     {
       diagnostics_.health().reportError(getName(),
-                                        "skipping a recognised object outside any camera's view (|x| or "
-                                        "|y| over 2 z)");
+                                        "skipping a recognised object outside its camera's view (z <= 0, "
+                                        "or |x| or |y| over 2 z)");
       continue;
     }
     const Eigen::Vector3d in_odom = odom_from_camera * p;

@@ -40,7 +40,10 @@ ObjectRecognizer::RegionFeatures ObjectRecognizer::regionFeatures(const cv::Mat&
   const cv::Rect image(0, 0, gray.cols, gray.rows);
   const int m = std::max(0, parameters_.region_margin);
   const cv::Rect crop = cv::Rect(box.x - m, box.y - m, box.width + 2 * m, box.height + 2 * m) & image;
-  pyramid_.build(gray(crop).clone());
+  // Descriptors sample their keypoint's level and coarser ones (DescriptorLayout::scales >= 0), shape
+  // adaptation a coarser one still: no level finer than the finest keypoint level is read.
+  const int first_level = levels.empty() ? 0 : std::max(0, *std::min_element(levels.begin(), levels.end()));
+  pyramid_.build(gray(crop).clone(), first_level);
   std::vector<biovision_v1::Keypoint> local;
   for (const auto& kp : pyramid_.detectKeypoints(levels))
   {

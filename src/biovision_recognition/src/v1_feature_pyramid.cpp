@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
@@ -66,10 +67,21 @@ cv::Point2f V1FeaturePyramid::toImage(const cv::Point2f& p, int k) const
   return {(p.x + 0.5f) * s.x - 0.5f, (p.y + 0.5f) * s.y - 0.5f};
 }
 
-void V1FeaturePyramid::build(const cv::Mat& gray)
+const V1FeaturePyramid::Level& V1FeaturePyramid::filtered(int k) const
+{
+  if (k < first_level_ || k >= levels())
+    throw std::out_of_range("V1FeaturePyramid: level " + std::to_string(k) + " has no cells (filtered: " +
+                            std::to_string(first_level_) + ".." + std::to_string(levels() - 1) + ")");
+  return levels_[k];
+}
+
+void V1FeaturePyramid::build(const cv::Mat& gray, int first_level)
 {
   if (gray.empty() || gray.type() != CV_32FC1)
     throw std::invalid_argument("V1FeaturePyramid::build: needs a non-empty CV_32FC1 image");
+  if (first_level < 0)
+    throw std::invalid_argument("V1FeaturePyramid::build: first_level must be >= 0");
+  first_level_ = first_level;
   std::vector<cv::Mat> images{gray};
   while (static_cast<int>(images.size()) < parameters_.max_levels)
   {
@@ -112,6 +124,12 @@ void V1FeaturePyramid::build(const cv::Mat& gray)
     Level& level = levels_[k];
     level.image = images[k];
     level.scale = {static_cast<float>(gray.cols) / images[k].cols, static_cast<float>(gray.rows) / images[k].rows};
+    if (static_cast<int>(k) < first_level)
+    {
+      level.responses = {};
+      level.pooled.release();
+      continue;
+    }
     level.responses = banks_[k].compute(images[k]).front();
     const int n = parameters_.orientations;
     std::vector<cv::Mat> maps(parameters_.pooling_phases * n);
@@ -141,7 +159,7 @@ std::vector<biovision_v1::Keypoint> V1FeaturePyramid::detectKeypoints(const std:
     for (int i = r.start; i < r.end; ++i)
     {
       const int k = levels[i];
-      if (k < 0 || k >= this->levels())
+      if (k < first_level_ || k >= this->levels())
         continue;
       const biovision_v1::EndStoppedCells cells(levels_[k].responses);
       for (biovision_v1::Keypoint kp : detector.detect(levels_[k].responses, cells))

@@ -48,6 +48,41 @@ TEST(V1FeaturePyramid, HalfOctaveLevelsAndCoordinates)
   EXPECT_THROW(pyramid.build(cv::Mat()), std::invalid_argument);
 }
 
+TEST(V1FeaturePyramid, SkippingFineLevelsLeavesTheCoarserCellsAndDescriptorsUnchanged)
+{
+  const V1Descriptor descriptor(DescriptorModel::load(modelPath()));
+  const cv::Mat image = texture(150, 130, 5);
+  V1FeaturePyramid full(descriptor.pyramidParameters()), coarse(descriptor.pyramidParameters());
+  full.build(image);
+  coarse.build(image, 1);
+  ASSERT_EQ(coarse.levels(), full.levels());
+  EXPECT_EQ(coarse.firstLevel(), 1);
+  EXPECT_THROW(coarse.pooled(0), std::out_of_range);
+  EXPECT_THROW(coarse.responses(0), std::out_of_range);
+  EXPECT_EQ(cv::norm(coarse.image(0), full.image(0), cv::NORM_INF), 0.0);
+  // Equal up to the FFT's rounding (the cached plans differ between the builds: measured after 16 uses).
+  for (int k = 1; k < full.levels(); ++k)
+  {
+    EXPECT_LT(cv::norm(coarse.pooled(k), full.pooled(k), cv::NORM_INF), 1e-6) << "level " << k;
+    EXPECT_LT(cv::norm(coarse.responses(k).odd[3], full.responses(k).odd[3], cv::NORM_INF), 1e-6) << "level " << k;
+  }
+  // Keypoints of level 0 are not detected; those of the levels kept are the same.
+  EXPECT_TRUE(coarse.detectKeypoints({0}).empty());
+  const auto a = full.detectKeypoints({1, 3});
+  const auto b = coarse.detectKeypoints({1, 3});
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_FALSE(a.empty());
+  const BinaryCodeSet codes_full = descriptor.compute(full, a), codes_coarse = descriptor.compute(coarse, b);
+  ASSERT_EQ(codes_full.size(), codes_coarse.size());
+  for (size_t i = 0; i < codes_full.size(); ++i)
+    EXPECT_EQ(hammingDistanceReference(codes_full.code(i), codes_coarse.code(i), codes_full.words()), 0);
+  // A descriptor of a level-0 keypoint needs level 0's cells.
+  biovision_v1::Keypoint fine = a.front();
+  fine.wavelength = static_cast<float>(V1FeaturePyramid::wavelengthOfLevel(0));
+  EXPECT_THROW(descriptor.compute(coarse, {fine}), std::out_of_range);
+  EXPECT_THROW(coarse.build(image, -1), std::invalid_argument);
+}
+
 TEST(PooledCellFeatures, LayoutSizes)
 {
   DescriptorLayout layout;

@@ -47,10 +47,16 @@ public:
   V1FeaturePyramid() : V1FeaturePyramid(Parameters()) {}
   explicit V1FeaturePyramid(const Parameters& parameters);
 
-  /// gray: CV_32FC1 in [0, 1] (biovision_v1::InputImage). Rebuilds every level.
-  void build(const cv::Mat& gray);
+  /// gray: CV_32FC1 in [0, 1] (biovision_v1::InputImage). Rebuilds every level's image; the cells (responses,
+  /// pooled maps) of levels from first_level on only: a query that samples no finer level skips the finest
+  /// ones' filtering (level 0 alone is half the work). Levels are filtered independently, so a level's cells
+  /// do not depend on first_level. Throws std::invalid_argument for an empty or non-CV_32FC1 image or a
+  /// negative first_level.
+  void build(const cv::Mat& gray, int first_level = 0);
 
   int levels() const { return static_cast<int>(levels_.size()); }
+  /// The finest level whose cells the last build() computed.
+  int firstLevel() const { return first_level_; }
   cv::Size imageSize() const { return levels_.empty() ? cv::Size() : levels_.front().image.size(); }
   /// Image wavelength of the cells of level k [image px].
   static double wavelengthOfLevel(int k);
@@ -59,12 +65,13 @@ public:
 
   /// The gray image of level k (CV_32FC1, the input shrunk by 2^(k/2)).
   const cv::Mat& image(int k) const { return levels_.at(k).image; }
-  const biovision_v1::ScaleResponses& responses(int k) const { return levels_.at(k).responses; }
+  /// Level k's cells; throws std::out_of_range for k outside [firstLevel(), levels()).
+  const biovision_v1::ScaleResponses& responses(int k) const { return filtered(k).responses; }
   /// One CV_32FC(pooling_phases * orientations) map: per pixel the channels even 0..N-1, odd 0..N-1
   /// (then, with 4 phases, -even, -odd), each the maximum over the pooling disk whose centre is
   /// poolingCentreOffset() px up-left of the sample. Interleaved so that a descriptor reads all channels
   /// of a pooling field from one place with one set of bilinear weights.
-  const cv::Mat& pooled(int k) const { return levels_.at(k).pooled; }
+  const cv::Mat& pooled(int k) const { return filtered(k).pooled; }
   double poolingCentreOffset() const;
 
   /// Image -> level k coordinates (pixel centres map to pixel centres) and back.
@@ -72,7 +79,7 @@ public:
   cv::Point2f toImage(const cv::Point2f& level_point, int k) const;
 
   /// V1 keypoints of the given levels, in image coordinates with wavelength = wavelengthOfLevel(k),
-  /// strongest first within each level. Levels outside [0, levels()) are skipped.
+  /// strongest first within each level. Levels outside [firstLevel(), levels()) are skipped.
   std::vector<biovision_v1::Keypoint> detectKeypoints(const std::vector<int>& levels) const;
 
   const Parameters& parameters() const { return parameters_; }
@@ -89,7 +96,10 @@ private:
     biovision_v1::ScaleResponses responses;
     cv::Mat pooled;
   };
+  const Level& filtered(int k) const;
+
   Parameters parameters_;
+  int first_level_ = 0;
   std::vector<biovision_v1::SimpleCellBank> banks_;  // one per level: each caches its size's spectra
   std::vector<Level> levels_;
   cv::Mat pooling_disk_;

@@ -83,6 +83,43 @@ TEST(V1FeaturePyramid, SkippingFineLevelsLeavesTheCoarserCellsAndDescriptorsUnch
   EXPECT_THROW(coarse.build(image, -1), std::invalid_argument);
 }
 
+TEST(V1FeaturePyramid, PooledMapsEqualMorphologicalMaxAndMinOverTheDisk)
+{
+  // The reference: planar cv::dilate / cv::erode with the disk (default border), negated OFF maps, merged.
+  for (int d : {1, 2, 3, 4, 5, 7})
+    for (int phases : {2, 4})
+    {
+      V1FeaturePyramid::Parameters p;
+      p.pooling_diameter = d;
+      p.pooling_phases = phases;
+      V1FeaturePyramid pyramid(p);
+      pyramid.build(texture(61, 47, d));
+      const int n = p.orientations;
+      for (int k = 0; k < pyramid.levels(); ++k)
+      {
+        const auto& r = pyramid.responses(k);
+        std::vector<cv::Mat> maps(phases * n);
+        for (int i = 0; i < n; ++i)
+        {
+          cv::dilate(r.even[i], maps[i], pyramid.poolingDisk());
+          cv::dilate(r.odd[i], maps[n + i], pyramid.poolingDisk());
+          if (phases == 4)
+          {
+            cv::erode(r.even[i], maps[2 * n + i], pyramid.poolingDisk());
+            cv::erode(r.odd[i], maps[3 * n + i], pyramid.poolingDisk());
+            maps[2 * n + i] *= -1.f;
+            maps[3 * n + i] *= -1.f;
+          }
+        }
+        cv::Mat reference;
+        cv::merge(maps, reference);
+        ASSERT_EQ(pyramid.pooled(k).type(), reference.type());
+        EXPECT_EQ(cv::norm(pyramid.pooled(k), reference, cv::NORM_INF), 0.0)
+            << "diameter " << d << ", phases " << phases << ", level " << k;
+      }
+    }
+}
+
 TEST(PooledCellFeatures, LayoutSizes)
 {
   DescriptorLayout layout;

@@ -84,6 +84,9 @@ public:
 
   const Parameters& parameters() const { return parameters_; }
 
+  /// The pooling element (CV_8U, pooling_diameter square, anchored at its (d/2, d/2) like cv::dilate's).
+  const cv::Mat& poolingDisk() const { return pooling_disk_; }
+
   /// Kernel spectra sets the levels' banks have built so far (SimpleCellBank::plansBuilt() summed): a
   /// region size whose DFT sizes are cached builds none.
   long kernelSpectraBuilt() const;
@@ -96,12 +99,22 @@ private:
     biovision_v1::ScaleResponses responses;
     cv::Mat pooled;
   };
+  struct PoolingRow
+  {
+    int dy;        // row offset from the anchor
+    int interval;  // index into pooling_intervals_
+  };
   const Level& filtered(int k) const;
+  /// The level's pooled map from its responses: per channel the max over the disk (OFF channels: the
+  /// negated min), equal to cv::dilate / cv::erode with pooling_disk_ and their default border.
+  void poolLevel(Level& level) const;
 
   Parameters parameters_;
   int first_level_ = 0;
   std::vector<biovision_v1::SimpleCellBank> banks_;  // one per level: each caches its size's spectra
   std::vector<Level> levels_;
-  cv::Mat pooling_disk_;
+  cv::Mat pooling_disk_;                      // CV_8U d x d, anchored at (d/2, d/2) like cv::dilate's element
+  std::vector<cv::Vec2i> pooling_intervals_;  // distinct column offset ranges [first, last] of its rows
+  std::vector<PoolingRow> pooling_rows_;      // its rows
 };
 }  // namespace biovision_recognition

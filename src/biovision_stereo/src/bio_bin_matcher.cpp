@@ -159,9 +159,11 @@ __attribute__((flatten)) void fuseSliceGeneric(cv::Mat& c, const cv::Mat& up, fl
 }
 }  // namespace
 
-BioBinMatcher::BioBinMatcher(const BioBinParameters& parameters) : parameters_(parameters)
+BioBinMatcher::BioBinMatcher(const BioBinParameters& parameters)
+  : parameters_((parameters.validate(), parameters)),
+    spatial_filter_(parameters_.relaxation, parameters_.stable_cost, parameters_.changing_fraction,
+                    parameters_.max_iterations)
 {
-  parameters_.validate();
   biovision_v1::GaborParameters gabor;
   gabor.wavelengths = {parameters_.base_wavelength};
   gabor.orientations = 8;
@@ -289,12 +291,10 @@ void BioBinMatcher::fuseWithCoarser(CostVolume& costs, const CostVolume& coarser
   });
 }
 
-void BioBinMatcher::spatialFilter(CostVolume& costs, const cv::Mat& barriers) const
+void BioBinMatcher::spatialFilter(CostVolume& costs, const cv::Mat& barriers)
 {
-  IterativeSpatialFilter filter(parameters_.relaxation, parameters_.stable_cost, parameters_.changing_fraction,
-                                parameters_.max_iterations);
-  filter.setSimd(cost_simd_);
-  filter.apply(costs, parameters_.line_edge_barriers ? barriers : cv::Mat());
+  spatial_filter_.setSimd(cost_simd_);
+  spatial_filter_.apply(costs, parameters_.line_edge_barriers ? barriers : cv::Mat());
 }
 
 DisparityMap BioBinMatcher::winnerTakeAll(const CostVolume& costs, cv::Size input, double sf) const

@@ -88,9 +88,8 @@ void IterativeSpatialFilter::apply(CostVolume& costs, const cv::Mat& barriers) c
   weights(costs, barriers, weight, inv_norm);
   const cv::Size size = costs.size();
   const size_t total = size_t(size.area()) * costs.disparities();
-  std::vector<cv::Mat> frozen(costs.disparities());
-  for (cv::Mat& f : frozen)
-    f = cv::Mat::zeros(size, CV_32F);
+  const size_t slice = size_t(size.area());
+  frozen_.assign(slice * costs.disparities(), 0.f);  // no allocation once the capacity is there
   const auto update = simd_ == CostSimd::kAvx2 ? updateRowAvx2 : updateRowGeneric;
   for (int it = 0; it < max_iterations_; ++it)
   {
@@ -104,8 +103,8 @@ void IterativeSpatialFilter::apply(CostVolume& costs, const cv::Mat& barriers) c
         cv::multiply(c, weight, masked);
         cv::sepFilter2D(masked, mean, CV_32F, binomial(), binomial(), cv::Point(-1, -1), 0, cv::BORDER_REPLICATE);
         for (int y = 0; y < size.height; ++y)
-          moved += update(c.ptr<float>(y), mean.ptr<float>(y), inv_norm.ptr<float>(y), frozen[k].ptr<float>(y),
-                          size.width, relaxation_, stable_cost_);
+          moved += update(c.ptr<float>(y), mean.ptr<float>(y), inv_norm.ptr<float>(y),
+                          frozen_.data() + slice * k + size_t(y) * size.width, size.width, relaxation_, stable_cost_);
       }
       changed += moved;
     });

@@ -11,6 +11,7 @@
 #include "biovision_stereo/cost_simd.hpp"
 #include "biovision_stereo/cost_volume.hpp"
 #include "biovision_stereo/disparity_map.hpp"
+#include "biovision_stereo/iterative_spatial_filter.hpp"
 #include "biovision_stereo/pixel_descriptor.hpp"
 
 namespace biovision_v1
@@ -70,7 +71,7 @@ private:
   /// base_wavelength): the one place BioBin computes V1 responses for its descriptors. gray: CV_32F in [0, 1].
   std::vector<cv::Mat> oddResponses(size_t level, const cv::Mat& gray);
   void fuseWithCoarser(CostVolume& costs, const CostVolume& coarser) const;
-  void spatialFilter(CostVolume& costs, const cv::Mat& barriers) const;
+  void spatialFilter(CostVolume& costs, const cv::Mat& barriers);
   DisparityMap winnerTakeAll(const CostVolume& costs, cv::Size input, double sf) const;
   /// parameters_.aggregation == "semi_global": the level's costs aggregated along paths, then WTA.
   DisparityMap aggregateAndTakeWinners(const CostVolume& costs, const cv::Mat& barriers, cv::Size input, double sf);
@@ -85,7 +86,8 @@ private:
   std::vector<std::unique_ptr<biovision_v1::SimpleCellBank>> odd_banks_;
   std::vector<std::unique_ptr<biovision_v1::SimpleCellBank>> barrier_banks_;
   std::vector<std::uint16_t> sgm_costs_, sgm_forward_, sgm_backward_;  // reused between frames
-  std::vector<CostVolume> spare_;                           // each level's cost volume of the last frame, memory reused
+  IterativeSpatialFilter spatial_filter_;  // the coarse levels' filter, its scratch reused between frames
+  std::vector<CostVolume> spare_;          // each level's cost volume of the last frame, memory reused
   std::vector<std::array<PixelDescriptorImage, 2>> codes_;  // each level's left and right descriptors, reused
 };
 }  // namespace biovision_stereo

@@ -219,8 +219,13 @@ void FourierTransform::forward(const cv::Mat& src_in, cv::Mat& spectrum)
                       reinterpret_cast<fftwf_complex*>(spectrum.data));
     return;
   }
-  cv::Mat out;
-  prepareOutput(out, src.size());  // never src's buffer: a real image is not its own spectrum
+  // Written into spectrum's own buffer when nothing else holds it (a fresh spectrum per call was a third
+  // of BioBin's page faults); never src's buffer: a real image is not its own spectrum.
+  releaseIfShared(spectrum);
+  if (spectrum.data == src.data)
+    spectrum.release();
+  cv::Mat& out = spectrum;
+  prepareOutput(out, src.size());
   const auto plan = planFor({h, w, Kind::kRealForward, false});
   fftwf_execute_dft_r2c(plan.get(), reinterpret_cast<float*>(src.data), reinterpret_cast<fftwf_complex*>(out.data));
   // The other half: X[y][x] = conj(X[-y mod H][W - x]) for x > W/2 (those sources are all in the computed half).
@@ -231,7 +236,12 @@ void FourierTransform::forward(const cv::Mat& src_in, cv::Mat& spectrum)
     for (int x = w / 2 + 1; x < w; ++x)
       row[x] = cv::Vec2f(mirror[w - x][0], -mirror[w - x][1]);
   }
-  spectrum = out;
+}
+
+void FourierTransform::releaseIfShared(cv::Mat& m)
+{
+  if (m.u && CV_XADD(&m.u->refcount, 0) > 1)  // an atomic read: other threads may release their views
+    m.release();
 }
 
 void FourierTransform::inverseUnscaled(const cv::Mat& spectrum_in, cv::Mat& dst)

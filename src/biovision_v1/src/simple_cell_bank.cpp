@@ -16,11 +16,6 @@ namespace
 {
 // Drops m's buffer when someone else still holds a view of it, so that writing into m never changes
 // what an earlier caller was given; a buffer only m holds is kept for reuse.
-void releaseIfShared(cv::Mat& m)
-{
-  if (m.u && CV_XADD(&m.u->refcount, 0) > 1)  // an atomic read: other threads may release their views
-    m.release();
-}
 
 // Kernel spectrum entries below this fraction of its peak are left out of the product: their
 // contribution is below the float rounding of the responses.
@@ -201,23 +196,28 @@ std::vector<cv::Mat> SimpleCellBank::imageSpectra(const cv::Mat& gray) const
 {
   const int n_scales = static_cast<int>(current().size());
   // Image spectra, one per distinct padding (coarse scales share the widest one).
-  std::vector<cv::Mat> image_spectra(n_scales);
   std::vector<int> sources;
   for (const ScalePlan& p : current())
     if (std::find(sources.begin(), sources.end(), p.spectrum_source) == sources.end())
       sources.push_back(p.spectrum_source);
+  // The padded images and spectra are the bank's, kept for the next call (fresh ones were a third of
+  // BioBin's page faults); the returned spectra share them until the caller lets go.
+  padded_images_.resize(n_scales);
+  image_spectra_.resize(n_scales);
   cv::parallel_for_(cv::Range(0, static_cast<int>(sources.size())), [&](const cv::Range& range) {
     for (int k = range.start; k < range.end; ++k)
     {
       const int s = sources[k];
       const ScalePlan& p = current()[s];
-      cv::Mat padded;
-      cv::copyMakeBorder(gray, padded, p.padding, p.padded.height - gray.rows - p.padding, p.padding,
+      FourierTransform::releaseIfShared(padded_images_[s]);  // a copy of this bank may hold it
+      cv::copyMakeBorder(gray, padded_images_[s], p.padding, p.padded.height - gray.rows - p.padding, p.padding,
                          p.padded.width - gray.cols - p.padding, cv::BORDER_REFLECT_101);
-      FourierTransform::forward(padded, image_spectra[s]);
+      FourierTransform::forward(padded_images_[s], image_spectra_[s]);
     }
   });
-
+  std::vector<cv::Mat> image_spectra(n_scales);
+  for (int s : sources)
+    image_spectra[s] = image_spectra_[s];
   return image_spectra;
 }
 
@@ -241,7 +241,7 @@ std::vector<std::vector<cv::Mat>> SimpleCellBank::computeOddPairs(const cv::Mat&
       // One buffer per job, kept for the next call (a fresh one per call was a quarter of BioBin's page
       // faults); the returned view shares it, so it is written again only once the caller has let go.
       cv::Mat& product = pair_products_[job];
-      releaseIfShared(product);
+      FourierTransform::releaseIfShared(product);
       cv::mulSpectrums(image_spectra[p.spectrum_source], p.odd_pair_spectra[pair], product, 0);
       FourierTransform::inverseUnscaled(product, product);  // the pair spectra carry the 1/N
       out[s][pair] = product(cv::Rect(p.padding, p.padding, gray.cols, gray.rows));

@@ -136,6 +136,41 @@ TEST(FourierTransform, InPlaceAndOnARegionOfInterest)
   EXPECT_LT(cv::norm(x / double(x.total()), original, cv::NORM_INF), 1e-5);
 }
 
+TEST(FourierTransform, ReusesAnUnsharedSpectrumAndNeverWritesIntoAViewHeldElsewhere)
+{
+  cv::Mat image(40, 50, CV_32FC1), other(40, 50, CV_32FC1);
+  cv::randu(image, 0.0, 1.0);
+  cv::randu(other, 0.0, 1.0);
+  cv::Mat ref;
+  cv::dft(image, ref, cv::DFT_COMPLEX_OUTPUT);
+  cv::Mat spectrum;
+  FourierTransform::forward(other, spectrum);
+  const uchar* buffer = spectrum.data;
+  FourierTransform::forward(image, spectrum);  // the only holder of its buffer: written again
+  EXPECT_EQ(spectrum.data, buffer);
+  EXPECT_LT(spectrumError(spectrum, ref), 1e-5);
+  const cv::Mat kept = spectrum;  // a view the caller still reads
+  const cv::Mat kept_copy = kept.clone();
+  FourierTransform::forward(other, spectrum);
+  EXPECT_NE(spectrum.data, kept.data);
+  EXPECT_EQ(cv::norm(kept, kept_copy, cv::NORM_INF), 0.0);
+}
+
+TEST(SimpleCellBank, RepeatedCallsLeaveEarlierResultsHeldByTheCallerIntact)
+{
+  GaborParameters p;
+  p.min_grid_wavelength = 0.0;
+  SimpleCellBank bank(p);
+  const cv::Mat a = texture(70, 60, 5), b = texture(70, 60, 6);
+  const auto first = bank.computeOddPairs(a);
+  const cv::Mat first_copy = first[0][1].clone();
+  const auto ref_b = bank.computeOddPairs(b);  // same size: the bank's buffers are reused where free
+  EXPECT_EQ(cv::norm(first[0][1], first_copy, cv::NORM_INF), 0.0);
+  SimpleCellBank fresh(p);
+  const auto again = fresh.computeOddPairs(b);
+  EXPECT_LT(cv::norm(ref_b[0][1], again[0][1], cv::NORM_INF), 1e-5);
+}
+
 TEST(FourierTransform, MakesOnePlanPerSizeAndRefusesOtherTypes)
 {
   cv::Mat a(37, 41, CV_32F, cv::Scalar(1)), out;

@@ -39,12 +39,17 @@ public:
 
   /// spectrum = DFT(src), the full H x W spectrum (CV_32FC2) of a CV_32FC1 (real) or CV_32FC2 (complex)
   /// image; for a real image the half FFTW does not compute is filled by Hermitian symmetry. spectrum may
-  /// be src itself when src is complex. Throws std::invalid_argument on an empty image or another type.
+  /// be src itself when src is complex. spectrum's buffer is reused when it has the size and no other
+  /// cv::Mat shares it (releaseIfShared). Throws std::invalid_argument on an empty image or another type.
   static void forward(const cv::Mat& src, cv::Mat& spectrum);
 
   /// dst = N * IDFT(spectrum), N = H * W (unscaled, as cv::idft without DFT_SCALE): CV_32FC2 in and out;
   /// dst may be spectrum itself. Throws std::invalid_argument on an empty or non-CV_32FC2 input.
   static void inverseUnscaled(const cv::Mat& spectrum, cv::Mat& dst);
+
+  /// Lets go of m's buffer when another cv::Mat shares it (an atomic read of OpenCV's reference count), so
+  /// that an output buffer kept between calls is written again only once every view of it is gone.
+  static void releaseIfShared(cv::Mat& m);
 
   /// "fftw3f <version>" (for benchmark reports).
   static std::string backend();

@@ -108,6 +108,8 @@ private:
   std::vector<PlanSet> cache_;
   int current_ = -1;                    // the cache_ entry plan() chose last
   std::vector<cv::Mat> pair_products_;  // computeOddPairs' inverse DFTs, reused once the caller let go
+  // imageSpectra()'s padded images and spectra per scale, reused between calls (one caller at a time).
+  mutable std::vector<cv::Mat> padded_images_, image_spectra_;
   long uses_ = 0, plans_built_ = 0;
   bool coarse_dft_sizes_ = false;
 };

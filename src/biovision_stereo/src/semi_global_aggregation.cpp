@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <opencv2/core/utility.hpp>
 
@@ -301,9 +302,17 @@ SemiGlobalAggregation::SemiGlobalAggregation(int p1, int p2, int p2_barrier, int
     throw std::invalid_argument("SemiGlobalAggregation: paths must be 4 or 8");
 }
 
+std::vector<SemiGlobalAggregation::Simd> SemiGlobalAggregation::availableSimds()
+{
+  std::vector<Simd> paths{Simd::kGeneric};
+  if (biovision_common::CpuFeatures::host().avx2)
+    paths.push_back(Simd::kAvx2);
+  return paths;
+}
+
 SemiGlobalAggregation::Simd SemiGlobalAggregation::bestSimd()
 {
-  return biovision_common::CpuFeatures::host().avx2 ? Simd::kAvx2 : Simd::kGeneric;
+  return availableSimds().back();
 }
 
 std::string SemiGlobalAggregation::name(Simd simd)

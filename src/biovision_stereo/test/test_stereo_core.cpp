@@ -337,9 +337,7 @@ TEST(SemiGlobalAggregation, PixelMajorCostsEqualTheScalarConversion)
 
 TEST(SemiGlobalAggregation, WinnersEqualTheScalarWinnerTakeAll)
 {
-  std::vector<SemiGlobalAggregation::Simd> simds{SemiGlobalAggregation::Simd::kGeneric};
-  if (SemiGlobalAggregation::bestSimd() == SemiGlobalAggregation::Simd::kAvx2)
-    simds.push_back(SemiGlobalAggregation::Simd::kAvx2);
+  const std::vector<SemiGlobalAggregation::Simd> simds = SemiGlobalAggregation::availableSimds();
   std::mt19937 rng(11);
   for (int nd : {1, 2, 15, 16, 33})
     for (int w : {1, 5, 40})
@@ -415,12 +413,10 @@ TEST(SemiGlobalAggregation, EveryPathEqualsTheBruteForceReference)
   // Small random volumes: disparity counts below, at and just under a SIMD vector's end; costs up to the
   // largest allowed, so that saturation and the blocked lanes are exercised; random barriers.
   std::mt19937 rng(7);
-  std::vector<SemiGlobalAggregation::Simd> simds{SemiGlobalAggregation::Simd::kGeneric};
-  if (SemiGlobalAggregation::bestSimd() == SemiGlobalAggregation::Simd::kAvx2)
-    simds.push_back(SemiGlobalAggregation::Simd::kAvx2);
-  else
+  const std::vector<SemiGlobalAggregation::Simd> simds = SemiGlobalAggregation::availableSimds();
+  if (simds.size() == 1)
     std::fprintf(stderr, "no AVX2 on this CPU: only the generic path is compared with the reference\n");
-  for (int nd : {1, 5, 15, 16, 31, 40})
+  for (int nd : {1, 5, 15, 16, 31, 40, 65})
     for (int paths : {4, 8})
     {
       const int w = 13, h = 9, stride = SemiGlobalAggregation::stride(nd);

@@ -18,6 +18,8 @@
 #include "biovision_stereo/pixel_descriptor.hpp"
 #include "biovision_v1/simple_cell_bank.hpp"
 #include "biovision_common/tool_options.hpp"
+#include "biovision_stereo/bio_bin_matcher.hpp"
+#include "biovision_stereo/semi_global_aggregation.hpp"
 #include "biovision_v1/fourier_transform.hpp"
 
 using biovision_common::MiddleburyDataset;
@@ -29,7 +31,8 @@ namespace
 const char* kDescription =
     "Per scene, same run: sgbm_ms (MODE_SGBM_3WAY, whole), odd_cells_ms (BioBin's odd cells, 2 images, every level),\n"
     "hamming_ms (finest level's 256-bit cost volume alone, on the path BioBin uses; hamming_ms_<path> on every\n"
-    "Hamming path this CPU runs), bm_fast_ms (StereoBM at quarter size incl. resize,\n"
+    "Hamming path this CPU runs), sgm_ms_<path> (the finest level's semi-global aggregation alone, 8 paths, on\n"
+    "every SIMD path this CPU runs), bm_fast_ms (StereoBM at quarter size incl. resize,\n"
     "whole), fast_cells_ms (the fast mode's odd cells alone, 2 images). Prints the JSON.";
 
 template <class F>
@@ -79,7 +82,7 @@ int main(int argc, char** argv)
   const BioBinParameters defaults;
   nlohmann::ordered_json scenes = nlohmann::ordered_json::object();
   double sum_sgbm = 0, sum_cells = 0, sum_ham = 0, sum_bm = 0, sum_fast = 0;
-  std::map<std::string, double> sum_ham_by_path;
+  std::map<std::string, double> sum_ham_by_path, sum_sgm_by_path;
   int n = 0;
   try
   {
@@ -147,8 +150,25 @@ int main(int argc, char** argv)
         if (path == biovision_common::bestHammingPath())
           t_ham = t;
       }
+      // The finest level's semi-global aggregation on BioBin's own costs, on every SIMD path.
+      BioBinMatcher matcher(defaults);
+      const CostVolume costs = matcher.levelCosts(0, s.left, s.right, nd + 1, nullptr);
+      std::vector<std::uint16_t> pixel_major, forward, backward;
+      SemiGlobalAggregation::toPixelMajor(costs, costs.min(), float(BioBinParameters::kSgmCostScale), pixel_major);
+      const auto units = [](double v) { return static_cast<int>(std::lround(v * BioBinParameters::kSgmCostScale)); };
+      const SemiGlobalAggregation sgm(units(defaults.sgm_p1), std::max(units(defaults.sgm_p1), units(defaults.sgm_p2)),
+                                      units(defaults.sgm_p2_barrier), defaults.sgm_paths);
+      nlohmann::ordered_json sgm_by_path = nlohmann::ordered_json::object();
+      for (const auto path : SemiGlobalAggregation::availableSimds())
+      {
+        const double t = milliseconds(
+            [&] { sgm.aggregate(pixel_major, gl.cols, gl.rows, nd + 1, cv::Mat(), forward, backward, path); }, repeats);
+        sgm_by_path[SemiGlobalAggregation::name(path)] = t;
+        sum_sgm_by_path[SemiGlobalAggregation::name(path)] += t;
+      }
       scenes[s.name] = stageTimes(t_sgbm, t_cells, t_ham, t_bm, t_fast);
       scenes[s.name]["hamming_ms_by_path"] = by_path;
+      scenes[s.name]["sgm_ms_by_path"] = sgm_by_path;
       std::cerr << s.name << ": sgbm " << t_sgbm << " ms, odd cells " << t_cells << " ms, hamming " << t_ham
                 << " ms | bm_fast " << t_bm << " ms, fast-mode cells " << t_fast << " ms\n";
       sum_sgbm += t_sgbm, sum_cells += t_cells, sum_ham += t_ham, sum_bm += t_bm, sum_fast += t_fast;
@@ -171,7 +191,12 @@ int main(int argc, char** argv)
   figures["hamming_path"] = Hamming::pathName();
   for (const auto& [path, sum] : sum_ham_by_path)
     figures["mean"]["hamming_ms_" + path] = sum / n;
+  figures["sgm_path"] = SemiGlobalAggregation::name(SemiGlobalAggregation::bestSimd());
+  for (const auto& [path, sum] : sum_sgm_by_path)
+    figures["mean"]["sgm_ms_" + path] = sum / n;
   figures["ratios"] = {{"odd_cells_vs_sgbm", sum_cells / sum_sgbm}, {"fast_cells_vs_bm_fast", sum_fast / sum_bm}};
+  if (sum_sgm_by_path.count("avx2"))
+    figures["ratios"]["sgm_avx2_vs_generic"] = sum_sgm_by_path["avx2"] / sum_sgm_by_path["generic"];
   if (sum_ham_by_path.count("popcnt"))
     figures["ratios"]["hamming_best_vs_popcnt"] = sum_ham / sum_ham_by_path["popcnt"];
   figures["notes"] = "Ratios > 1: the mandated stage alone takes longer than the peer's whole computation.";

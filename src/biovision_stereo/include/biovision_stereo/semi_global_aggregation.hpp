@@ -38,6 +38,10 @@ public:
   SemiGlobalAggregation(int p1, int p2, int p2_barrier, int paths);
 
   static int stride(int disparities) { return (disparities + 1 + 15) / 16 * 16; }
+  /// The paths this CPU runs, slowest first (kGeneric always). No AVX-512 path: a 32-lane step measured
+  /// 5-8% slower than AVX2 on an AVX-512 EPYC (stage_floor sgm_ms, 2026-12-05): the sweep is bound by its
+  /// step-to-step dependency and memory, not by lanes.
+  static std::vector<Simd> availableSimds();
   /// The fastest path this CPU runs (AVX2 when present).
   static Simd bestSimd();
   static std::string name(Simd simd);

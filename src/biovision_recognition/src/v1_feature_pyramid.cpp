@@ -168,6 +168,7 @@ void V1FeaturePyramid::build(const cv::Mat& gray, int first_level)
       level.pooled.release();
       continue;
     }
+    level.responses = {};  // let go first: the bank then writes the new responses into the same buffers
     level.responses = banks_[k].compute(images[k]).front();
     poolLevel(level);
   }

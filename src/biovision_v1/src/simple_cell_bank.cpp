@@ -288,15 +288,19 @@ std::vector<ScaleResponses> SimpleCellBank::compute(const cv::Mat& gray)
     out[s].even.resize(n_orient);
     out[s].odd.resize(n_orient);
   }
-  // One job per (scale, orientation): fold the product spectrum onto the grid, invert, crop.
+  // One job per (scale, orientation): fold the product spectrum onto the grid, invert, crop. The folded
+  // spectra and the split responses are the bank's, kept for the next call (fresh ones per call were
+  // most of the recognition pyramid's page faults); a response the caller still holds is never reused.
+  folded_.resize(size_t(n_scales) * n_orient);
+  kept_responses_.resize(size_t(n_scales) * n_orient * 2);
   cv::parallel_for_(cv::Range(0, n_scales * n_orient), [&](const cv::Range& range) {
-    cv::Mat folded;
     for (int job = range.start; job < range.end; ++job)
     {
       const int s = job / n_orient, i = job % n_orient;
       const ScalePlan& p = current()[s];
       const int d = p.decimation;
       const cv::Size grid(p.padded.width / d, p.padded.height / d);
+      cv::Mat& folded = folded_[job];
       folded.create(grid, CV_32FC2);
       folded.setTo(cv::Scalar::all(0));
       for (const SpectrumRun& run : p.runs[i])
@@ -313,10 +317,16 @@ std::vector<ScaleResponses> SimpleCellBank::compute(const cv::Mat& gray)
       FourierTransform::inverseUnscaled(folded, folded);  // the kernel spectra carry the 1/N
       const int h = (gray.rows + d - 1) / d, w = (gray.cols + d - 1) / d;
       const cv::Mat valid = folded(cv::Rect(p.padding / d, p.padding / d, w, h));
-      cv::Mat parts[2] = {out[s].even[i], out[s].odd[i]};
+      cv::Mat& even = kept_responses_[2 * size_t(job)];
+      cv::Mat& odd = kept_responses_[2 * size_t(job) + 1];
+      FourierTransform::releaseIfShared(even);
+      FourierTransform::releaseIfShared(odd);
+      even.create(h, w, CV_32F);
+      odd.create(h, w, CV_32F);
+      cv::Mat parts[2] = {even, odd};
       cv::split(valid, parts);
-      out[s].even[i] = parts[0];
-      out[s].odd[i] = parts[1];
+      out[s].even[i] = even;
+      out[s].odd[i] = odd;
     }
   });
   return out;

@@ -169,6 +169,21 @@ TEST(SimpleCellBank, RepeatedCallsLeaveEarlierResultsHeldByTheCallerIntact)
   SimpleCellBank fresh(p);
   const auto again = fresh.computeOddPairs(b);
   EXPECT_LT(cv::norm(ref_b[0][1], again[0][1], cv::NORM_INF), 1e-5);
+  // The same for the quadrature responses: a held result stays, a released one's buffers are reused.
+  const auto held = bank.compute(a);
+  const cv::Mat held_copy = held[0].even[2].clone();
+  const uchar* held_data = held[0].even[2].data;
+  const auto next = bank.compute(b);
+  EXPECT_EQ(cv::norm(held[0].even[2], held_copy, cv::NORM_INF), 0.0);
+  EXPECT_NE(next[0].even[2].data, held_data);
+  const uchar* next_data = next[0].odd[5].data;
+  const auto ref = fresh.compute(a);
+  {
+    const auto dropped = bank.compute(b);  // `next` still holds its buffers: new ones
+    EXPECT_NE(dropped[0].odd[5].data, next_data);
+  }
+  const auto reused = bank.compute(a);  // `dropped` let go: its buffers are written again
+  EXPECT_LT(cv::norm(reused[0].odd[5], ref[0].odd[5], cv::NORM_INF), 1e-5);
 }
 
 TEST(FourierTransform, MakesOnePlanPerSizeAndRefusesOtherTypes)

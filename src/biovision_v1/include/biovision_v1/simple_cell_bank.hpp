@@ -108,6 +108,9 @@ private:
   std::vector<PlanSet> cache_;
   int current_ = -1;                    // the cache_ entry plan() chose last
   std::vector<cv::Mat> pair_products_;  // computeOddPairs' inverse DFTs, reused once the caller let go
+  // compute()'s folded spectra and even/odd responses per (scale, orientation), reused once the caller
+  // let go of the responses.
+  std::vector<cv::Mat> folded_, kept_responses_;
   // imageSpectra()'s padded images and spectra per scale, reused between calls (one caller at a time).
   mutable std::vector<cv::Mat> padded_images_, image_spectra_;
   long uses_ = 0, plans_built_ = 0;

@@ -162,13 +162,12 @@ void V1FeaturePyramid::build(const cv::Mat& gray, int first_level)
     Level& level = levels_[k];
     level.image = images[k];
     level.scale = {static_cast<float>(gray.cols) / images[k].cols, static_cast<float>(gray.rows) / images[k].rows};
+    level.responses = {};  // let go first: the bank then writes the new responses into the same buffers
     if (static_cast<int>(k) < first_level)
     {
-      level.responses = {};
       level.pooled.release();
       continue;
     }
-    level.responses = {};  // let go first: the bank then writes the new responses into the same buffers
     level.responses = banks_[k].compute(images[k]).front();
     poolLevel(level);
   }

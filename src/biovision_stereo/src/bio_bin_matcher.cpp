@@ -160,10 +160,11 @@ __attribute__((flatten)) void fuseSliceGeneric(cv::Mat& c, const cv::Mat& up, fl
 }  // namespace
 
 BioBinMatcher::BioBinMatcher(const BioBinParameters& parameters)
-  : parameters_((parameters.validate(), parameters)),
-    spatial_filter_(parameters_.relaxation, parameters_.stable_cost, parameters_.changing_fraction,
-                    parameters_.max_iterations)
+  : parameters_(parameters),
+    spatial_filter_(parameters.relaxation, parameters.stable_cost, parameters.changing_fraction,
+                    parameters.max_iterations)
 {
+  parameters_.validate();
   biovision_v1::GaborParameters gabor;
   gabor.wavelengths = {parameters_.base_wavelength};
   gabor.orientations = 8;

@@ -14,9 +14,6 @@ namespace biovision_v1
 {
 namespace
 {
-// Drops m's buffer when someone else still holds a view of it, so that writing into m never changes
-// what an earlier caller was given; a buffer only m holds is kept for reuse.
-
 // Kernel spectrum entries below this fraction of its peak are left out of the product: their
 // contribution is below the float rounding of the responses.
 constexpr double kNegligibleSpectrum = 1e-6;

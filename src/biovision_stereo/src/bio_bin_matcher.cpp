@@ -57,15 +57,19 @@ cv::Mat toBgr8(const cv::Mat& in, const char* which)
   return bgr;
 }
 
-/// Steps (b), (d) and the kappa modulation of levelCosts() for image rows [y0, y1): Hamming costs of the
-/// codes, the planar L*a*b* SAD, its N_th smallest per pixel and the colour-masked cost, written into `costs`.
+/// Steps (b), (d), the kappa modulation and (e) of levelCosts() for image rows [y0, y1): Hamming costs of
+/// the codes, the planar L*a*b* SAD, its N_th smallest per pixel and the colour-masked cost of one row in
+/// a row buffer, then the DoG along disparity from that buffer into `costs` while the row is in the cache
+/// (one write of the volume instead of a write, a copy and a rewrite), and each row's largest cost.
 struct MaskedCostRows
 {
   const cv::Mat* left_planes;  // 3 planes of 8-bit L*a*b*
   const cv::Mat* right_planes;
   const PixelDescriptorImage* left_codes;
   const PixelDescriptorImage* right_codes;
+  const DisparityDog* dog;
   CostVolume* costs;
+  float* row_max;  // [h]: the largest filtered cost of each image row
   int w, nd, n_th;
   float damp, boost;
 };
@@ -81,6 +85,12 @@ inline void maskedCostRows(const MaskedCostRows& in, int y0, int y1)
   // on the baseline instruction set (unsigned ones did not).
   std::vector<std::int16_t> sad(size_t(nd) * w), carry(w);
   std::vector<std::vector<std::int16_t>> smallest(n_th, std::vector<std::int16_t>(w));
+  std::vector<float> masked(size_t(nd) * w);  // the row's colour-masked costs, disparity-major: the DoG's input
+  std::vector<const float*> dog_in(nd);
+  std::vector<float*> dog_out(nd);
+  std::vector<std::vector<float>> dog_scratch;
+  for (int k = 0; k < nd; ++k)
+    dog_in[k] = &masked[size_t(k) * w];
   for (int y = y0; y < y1; ++y)
   {
     const uchar *l0 = left_planes[0].ptr(y), *l1 = left_planes[1].ptr(y), *l2 = left_planes[2].ptr(y);
@@ -93,7 +103,7 @@ inline void maskedCostRows(const MaskedCostRows& in, int y0, int y1)
       for (int x = k; x < w; ++x)
         s[x] = static_cast<std::int16_t>(std::abs(l0[x] - r0[x - k]) + std::abs(l1[x] - r1[x - k]) +
                                          std::abs(l2[x] - r2[x - k]));
-      Hamming::row(left_codes.row(y), right_codes.row(y), w, k, kMaxHamming, costs.slice(k).ptr<float>(y));
+      Hamming::row(left_codes.row(y), right_codes.row(y), w, k, kMaxHamming, &masked[size_t(k) * w]);
     }
     // BT = the N_th smallest SAD of each pixel: a compare-exchange chain over x, smallest[0..n_th) kept
     // sorted per pixel, each disparity's SAD carried down the chain (exact, ties included).
@@ -119,17 +129,26 @@ inline void maskedCostRows(const MaskedCostRows& in, int y0, int y1)
     const std::int16_t* threshold = smallest[n_th - 1].data();
     for (int k = 0; k < nd; ++k)
     {
-      float* c = costs.slice(k).ptr<float>(y);
+      float* c = &masked[size_t(k) * w];
       const std::int16_t* s = &sad[size_t(k) * w];
       for (int x = 0; x < w; ++x)
         c[x] *= s[x] <= threshold[x] ? damp : boost;
+      dog_out[k] = costs.slice(k).ptr<float>(y);
     }
+    in.dog->applyRow(dog_in, w, dog_out, dog_scratch);
+    in.row_max[y] = costs.max(y, y + 1);
   }
 }
 
-// The same rows compiled twice (every call inlined into each wrapper): AVX2 (16 lanes of int16, 8 of
-// float; no FMA, so the same bits) and the baseline instruction set, the fallback on every CPU.
+// The same rows compiled three times (every call inlined into each wrapper): AVX-512 (32 lanes of int16,
+// 16 of float), AVX2 (16 and 8) and the baseline instruction set, the fallback on every CPU; no FMA, so
+// the same bits.
 __attribute__((target("avx2"), flatten)) void maskedCostRowsAvx2(const MaskedCostRows& in, int y0, int y1)
+{
+  maskedCostRows(in, y0, y1);
+}
+
+BIOVISION_STEREO_AVX512_CLONE void maskedCostRowsAvx512(const MaskedCostRows& in, int y0, int y1)
 {
   maskedCostRows(in, y0, y1);
 }
@@ -146,16 +165,32 @@ inline void fuseRow(float* cr, const float* ur, int w, float level)
     cr[x] = cr[x] > level ? 0.5f * cr[x] + 0.5f * ur[x] : cr[x];
 }
 
-__attribute__((target("avx2"), flatten)) void fuseSliceAvx2(cv::Mat& c, const cv::Mat& up, float level)
+/// A fused slice and its least value (NaN ignored), each row's taken while it is in the cache, so that the
+/// aggregation's offset needs no pass of its own over the volume.
+inline float fuseSlice(cv::Mat& c, const cv::Mat& up, float level)
 {
+  float lowest = HUGE_VALF;
   for (int y = 0; y < c.rows; ++y)
+  {
     fuseRow(c.ptr<float>(y), up.ptr<float>(y), c.cols, level);
+    lowest = CostVolume::lowestOf(c.ptr<float>(y), c.cols, lowest);
+  }
+  return lowest;
 }
 
-__attribute__((flatten)) void fuseSliceGeneric(cv::Mat& c, const cv::Mat& up, float level)
+__attribute__((target("avx2"), flatten)) float fuseSliceAvx2(cv::Mat& c, const cv::Mat& up, float level)
 {
-  for (int y = 0; y < c.rows; ++y)
-    fuseRow(c.ptr<float>(y), up.ptr<float>(y), c.cols, level);
+  return fuseSlice(c, up, level);
+}
+
+BIOVISION_STEREO_AVX512_CLONE float fuseSliceAvx512(cv::Mat& c, const cv::Mat& up, float level)
+{
+  return fuseSlice(c, up, level);
+}
+
+__attribute__((flatten)) float fuseSliceGeneric(cv::Mat& c, const cv::Mat& up, float level)
+{
+  return fuseSlice(c, up, level);
 }
 }  // namespace
 
@@ -200,7 +235,7 @@ std::vector<cv::Mat> BioBinMatcher::oddResponses(size_t level, const cv::Mat& gr
 }
 
 CostVolume BioBinMatcher::levelCosts(size_t level, const cv::Mat& left, const cv::Mat& right, int disparities,
-                                     cv::Mat* barriers)
+                                     cv::Mat* barriers, float* max_cost)
 {
   const cv::Size size = left.size();
   const int w = size.width, h = size.height, nd = disparities;
@@ -237,8 +272,8 @@ CostVolume BioBinMatcher::levelCosts(size_t level, const cv::Mat& left, const cv
 
   times_.cells += msSince(t);
   t = Clock::now();
-  // (d) Hamming costs, (b) colour mask, modulation; one image row at a time, rows in parallel.
-  // The level's volume of the last frame: same shape, so no allocation (and no page faults) per frame.
+  // (d) Hamming costs, (b) colour mask, modulation, (e) 1-D DoG along disparity; one image row at a time
+  // through all four, rows in parallel. The level's volume of the last frame: same shape, so no allocation (and no page faults) per frame.
   CostVolume costs = std::move(spare_[level]);
   costs.create(size, nd);  // every value is written below
   const int n_th = std::clamp(static_cast<int>(std::lround(std::log2(std::max(2.0, parameters_.max_disparity / sf)))),
@@ -248,34 +283,41 @@ CostVolume BioBinMatcher::levelCosts(size_t level, const cv::Mat& left, const cv
   cv::Mat left_planes[3], right_planes[3];
   cv::split(left_lab, left_planes);
   cv::split(right_lab, right_planes);
-  const MaskedCostRows rows_in{left_planes, right_planes, &left_codes, &right_codes, &costs, w, nd, n_th, damp, boost};
+  DisparityDog dog(parameters_.sigma1 / sf, parameters_.sigma2 / sf, parameters_.tau, parameters_.alpha,
+                   parameters_.beta);
+  dog.setSimd(cost_simd_);
+  std::vector<float> row_max(h);
+  const MaskedCostRows rows_in{left_planes, right_planes, &left_codes, &right_codes, &dog, &costs, row_max.data(),
+                               w,           nd,           n_th,        damp,         boost};
   const CostSimd simd = cost_simd_;
   cv::parallel_for_(cv::Range(0, h), [&](const cv::Range& rows) {
-    if (simd == CostSimd::kAvx2)
+    if (simd == CostSimd::kAvx512)
+      maskedCostRowsAvx512(rows_in, rows.start, rows.end);
+    else if (simd == CostSimd::kAvx2)
       maskedCostRowsAvx2(rows_in, rows.start, rows.end);
     else
       maskedCostRowsGeneric(rows_in, rows.start, rows.end);
   });
 
+  if (max_cost)
+  {
+    *max_cost = -HUGE_VALF;  // CostVolume::max()'s value, NaN ignored
+    for (const float m : row_max)
+      *max_cost = std::max(*max_cost, m);
+  }
   times_.costs += msSince(t);
-  t = Clock::now();
-  // (e) 1-D DoG along disparity.
-  DisparityDog dog(parameters_.sigma1 / sf, parameters_.sigma2 / sf, parameters_.tau, parameters_.alpha,
-                   parameters_.beta);
-  dog.setSimd(cost_simd_);
-  dog.applyInPlace(costs);
-  times_.dog += msSince(t);
   return costs;
 }
 
-void BioBinMatcher::fuseWithCoarser(CostVolume& costs, const CostVolume& coarser) const
+float BioBinMatcher::fuseWithCoarser(CostVolume& costs, float max_cost, const CostVolume& coarser) const
 {
   // Costs above L are averaged with the coarser level's final costs at the same disparity, resampled
   // as CostVolume::resampled does (linear in k, bilinear in x, y) but one slice at a time: the whole
   // upsampled volume is never stored (it was 17 of this stage's 18 ms on Cones).
-  const float level = static_cast<float>(parameters_.fusion_level) * costs.max();
+  const float level = static_cast<float>(parameters_.fusion_level) * max_cost;
   const int nd = costs.disparities(), d_in = coarser.disparities();
   const double scale = nd > 1 ? double(d_in - 1) / double(nd - 1) : 0.0;
+  std::vector<float> slice_min(nd);
   cv::parallel_for_(cv::Range(0, nd), [&](const cv::Range& ks) {
     cv::Mat mixed, up;
     for (int k = ks.start; k < ks.end; ++k)
@@ -284,12 +326,15 @@ void BioBinMatcher::fuseWithCoarser(CostVolume& costs, const CostVolume& coarser
       const int k0 = std::min(static_cast<int>(kc), d_in - 1), k1 = std::min(k0 + 1, d_in - 1);
       cv::addWeighted(coarser.slice(k0), 1.0 - (kc - k0), coarser.slice(k1), kc - k0, 0.0, mixed);
       cv::resize(mixed, up, costs.size(), 0, 0, cv::INTER_LINEAR);
-      if (cost_simd_ == CostSimd::kAvx2)
-        fuseSliceAvx2(costs.slice(k), up, level);
+      if (cost_simd_ == CostSimd::kAvx512)
+        slice_min[k] = fuseSliceAvx512(costs.slice(k), up, level);
+      else if (cost_simd_ == CostSimd::kAvx2)
+        slice_min[k] = fuseSliceAvx2(costs.slice(k), up, level);
       else
-        fuseSliceGeneric(costs.slice(k), up, level);
+        slice_min[k] = fuseSliceGeneric(costs.slice(k), up, level);
     }
   });
+  return *std::min_element(slice_min.begin(), slice_min.end());
 }
 
 void BioBinMatcher::spatialFilter(CostVolume& costs, const cv::Mat& barriers)
@@ -391,15 +436,14 @@ DisparityMap BioBinMatcher::toInputResolution(cv::Mat& left_d, const cv::Mat& ri
   return out;
 }
 
-DisparityMap BioBinMatcher::aggregateAndTakeWinners(const CostVolume& costs, const cv::Mat& barriers, cv::Size input,
-                                                    double sf)
+DisparityMap BioBinMatcher::aggregateAndTakeWinners(const CostVolume& costs, float lowest, const cv::Mat& barriers,
+                                                    cv::Size input, double sf)
 {
   auto t = Clock::now();
   const cv::Size size = costs.size();
   const int w = size.width, h = size.height, nd = costs.disparities();
   // 16-bit pixel-major costs: (M - min M) * kSgmCostScale, saturated at kMaxCost. A constant offset does
   // not change the aggregation's winners, the scale fixes what P1 and P2 mean.
-  const float lowest = costs.min();
   const float scale = static_cast<float>(BioBinParameters::kSgmCostScale);
   SemiGlobalAggregation::toPixelMajor(costs, lowest, scale, sgm_costs_);
   const auto units = [scale](double v) { return static_cast<int>(std::lround(v * scale)); };
@@ -462,16 +506,17 @@ DisparityMap BioBinMatcher::compute(const cv::Mat& left_in, const cv::Mat& right
     const bool need_barriers = parameters_.line_edge_barriers &&
                                (!semi_global || parameters_.sgm_p2_barrier != parameters_.sgm_p2);
     cv::Mat barriers;
-    CostVolume costs = levelCosts(s, l, r, disparities, need_barriers ? &barriers : nullptr);
+    float max_cost = 0.f;
+    CostVolume costs = levelCosts(s, l, r, disparities, need_barriers ? &barriers : nullptr, &max_cost);
     auto t = Clock::now();
-    if (previous.disparities() > 0)
-      fuseWithCoarser(costs, previous);
+    const bool fused = previous.disparities() > 0;
+    const float lowest = fused ? fuseWithCoarser(costs, max_cost, previous) : HUGE_VALF;
     times_.fusion += msSince(t);
     if (previous.disparities() > 0)
       spare_[s + 1] = std::move(previous);
     if (semi_global)
     {
-      DisparityMap result = aggregateAndTakeWinners(costs, barriers, left.size(), sf);
+      DisparityMap result = aggregateAndTakeWinners(costs, fused ? lowest : costs.min(), barriers, left.size(), sf);
       spare_[0] = std::move(costs);
       times_.total = msSince(start);
       return result;

@@ -1,5 +1,6 @@
 #include "biovision_stereo/cost_simd.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "biovision_common/cpu_features.hpp"
@@ -8,17 +9,38 @@ namespace biovision_stereo
 {
 CostSimd bestCostSimd()
 {
-  return biovision_common::CpuFeatures::host().avx2 ? CostSimd::kAvx2 : CostSimd::kGeneric;
+  return availableCostSimds().back();
+}
+
+std::vector<CostSimd> availableCostSimds()
+{
+  const auto& cpu = biovision_common::CpuFeatures::host();
+  std::vector<CostSimd> simds{CostSimd::kGeneric};
+  if (cpu.avx2)
+    simds.push_back(CostSimd::kAvx2);
+  if (cpu.avx2 && cpu.avx512f && cpu.avx512bw)
+    simds.push_back(CostSimd::kAvx512);
+  return simds;
 }
 
 std::string costSimdName(CostSimd simd)
 {
-  return simd == CostSimd::kAvx2 ? "avx2" : "generic";
+  switch (simd)
+  {
+    case CostSimd::kAvx512:
+      return "avx512";
+    case CostSimd::kAvx2:
+      return "avx2";
+    default:
+      return "generic";
+  }
 }
 
 void requireCostSimd(CostSimd simd)
 {
-  if (simd == CostSimd::kAvx2 && !biovision_common::CpuFeatures::host().avx2)
-    throw std::invalid_argument("BioBin: the AVX2 cost path needs a CPU with AVX2");
+  const auto simds = availableCostSimds();
+  if (std::find(simds.begin(), simds.end(), simd) == simds.end())
+    throw std::invalid_argument("BioBin: the " + costSimdName(simd) + " cost path needs a CPU with " +
+                                (simd == CostSimd::kAvx512 ? "AVX-512F and AVX-512BW" : "AVX2"));
 }
 }  // namespace biovision_stereo

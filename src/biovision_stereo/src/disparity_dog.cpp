@@ -119,21 +119,31 @@ void DisparityDog::setSimd(CostSimd simd)
   simd_ = simd;
 }
 
-void DisparityDog::filterRow(const std::vector<const float*>& in, int w, std::vector<float*>& out,
-                             std::vector<std::vector<float>>& scratch) const
+void DisparityDog::applyRow(const std::vector<const float*>& in, int w, std::vector<float*>& out,
+                            std::vector<std::vector<float>>& scratch) const
 {
-  if (simd_ == CostSimd::kAvx2)
+  if (simd_ == CostSimd::kAvx512)
+    filterRowAvx512(in, w, out, scratch);
+  else if (simd_ == CostSimd::kAvx2)
     filterRowAvx2(in, w, out, scratch);
   else
     filterRowGeneric(in, w, out, scratch);
 }
 
-// The same body twice, each with every call inlined (flatten) so that its loops are compiled for the
+// The same body three times, each with every call inlined (flatten) so that its loops are compiled for the
 // wrapper's instruction set (the callees are `inline`: an exported member of a -fPIC library could be
-// interposed, and GCC does not inline those). No FMA in the AVX2 target: each product and sum rounds as in the generic code.
+// interposed, and GCC does not inline those). No FMA (-ffp-contract=off): each product and sum rounds as in
+// the generic code.
 __attribute__((target("avx2"), flatten)) void DisparityDog::filterRowAvx2(
     const std::vector<const float*>& in, int w, std::vector<float*>& out,
     std::vector<std::vector<float>>& scratch) const
+{
+  filterRowBody(in, w, out, scratch);
+}
+
+BIOVISION_STEREO_AVX512_CLONE void DisparityDog::filterRowAvx512(const std::vector<const float*>& in, int w,
+                                                                 std::vector<float*>& out,
+                                                                 std::vector<std::vector<float>>& scratch) const
 {
   filterRowBody(in, w, out, scratch);
 }
@@ -172,7 +182,7 @@ void DisparityDog::apply(const CostVolume& in, CostVolume& out) const
         i[k] = in.slice(k).ptr<float>(y);
         o[k] = out.slice(k).ptr<float>(y);
       }
-      filterRow(i, w, o, scratch);
+      applyRow(i, w, o, scratch);
     }
   });
 }
@@ -194,7 +204,7 @@ void DisparityDog::applyInPlace(CostVolume& costs) const
         o[k] = costs.slice(k).ptr<float>(y);
         std::copy(o[k], o[k] + w, copy.data() + size_t(k) * w);
       }
-      filterRow(i, w, o, scratch);
+      applyRow(i, w, o, scratch);
     }
   });
 }

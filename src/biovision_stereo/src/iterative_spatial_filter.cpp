@@ -29,9 +29,15 @@ inline int updateRow(float* cost, const float* mean, const float* inv_norm, floa
   return moved;
 }
 
-// The same row compiled for AVX2 (no FMA: the same bits) and for the baseline instruction set.
+// The same row compiled for AVX-512, AVX2 (no FMA: the same bits) and the baseline instruction set.
 __attribute__((target("avx2"), flatten)) int updateRowAvx2(float* cost, const float* mean, const float* inv_norm,
                                                            float* frozen, int w, float r, float th)
+{
+  return updateRow(cost, mean, inv_norm, frozen, w, r, th);
+}
+
+BIOVISION_STEREO_AVX512_CLONE int updateRowAvx512(float* cost, const float* mean, const float* inv_norm, float* frozen,
+                                                  int w, float r, float th)
 {
   return updateRow(cost, mean, inv_norm, frozen, w, r, th);
 }
@@ -90,7 +96,9 @@ void IterativeSpatialFilter::apply(CostVolume& costs, const cv::Mat& barriers) c
   const size_t total = size_t(size.area()) * costs.disparities();
   const size_t slice = size_t(size.area());
   frozen_.assign(slice * costs.disparities(), 0.f);  // no allocation once the capacity is there
-  const auto update = simd_ == CostSimd::kAvx2 ? updateRowAvx2 : updateRowGeneric;
+  const auto update = simd_ == CostSimd::kAvx512 ? updateRowAvx512
+                      : simd_ == CostSimd::kAvx2 ? updateRowAvx2
+                                                 : updateRowGeneric;
   for (int it = 0; it < max_iterations_; ++it)
   {
     std::atomic<size_t> changed{0};

@@ -1,4 +1,5 @@
 // Unit tests of the ROS-free BioBin core.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <cstdio>
@@ -23,6 +24,8 @@
 #include "biovision_stereo/pixel_descriptor.hpp"
 #include "biovision_stereo/semi_global_aggregation.hpp"
 #include "biovision_v1/fourier_transform.hpp"
+#include "biovision_v1/gabor_parameters.hpp"
+#include "biovision_v1/simple_cell_bank.hpp"
 #include "biovision_common/eval/portable_float_map.hpp"
 
 using biovision_common::DisparityMetrics;
@@ -291,6 +294,42 @@ TEST(CostVolume, MinimumAndMaximumOverEverySliceIgnoreNaN)
       EXPECT_EQ(costs.min(), -4.f) << size;
       EXPECT_EQ(costs.max(), 9.f) << size;
     }
+    // Row ranges: the extremes of those rows only, empty range = the identity.
+    EXPECT_EQ(costs.min(size.height - 1, size.height), -4.f) << size;
+    EXPECT_EQ(costs.max(0, 1), 9.f) << size;
+    if (size.height > 1)
+    {
+      EXPECT_GT(costs.min(0, size.height - 1), -4.f) << size;
+      EXPECT_LT(costs.max(1, size.height), 9.f) << size;
+    }
+    EXPECT_EQ(costs.max(1, 1), -HUGE_VALF) << size;
+    EXPECT_THROW(costs.max(0, size.height + 1), std::out_of_range) << size;
+    EXPECT_THROW(costs.min(-1, 1), std::out_of_range) << size;
+    EXPECT_THROW(costs.min(1, 0), std::out_of_range) << size;
+  }
+  // Runs of values: every length around the 8-lane blocks, the extreme in the tail and in a block, NaN.
+  for (int n = 0; n <= 19; ++n)
+  {
+    std::vector<float> v(n);
+    for (int i = 0; i < n; ++i)
+      v[i] = static_cast<float>((i * 7) % 5);
+    if (n > 0)
+    {
+      v[n - 1] = -3.f;
+      v[n / 2] = std::numeric_limits<float>::quiet_NaN();
+      v[0] = n > 2 ? 11.f : v[0];
+    }
+    float lo = HUGE_VALF, hi = -HUGE_VALF;
+    for (const float x : v)
+      if (!std::isnan(x))
+      {
+        lo = std::min(lo, x);
+        hi = std::max(hi, x);
+      }
+    EXPECT_EQ(CostVolume::lowestOf(v.data(), n), lo) << n;
+    EXPECT_EQ(CostVolume::highestOf(v.data(), n), hi) << n;
+    EXPECT_EQ(CostVolume::lowestOf(v.data(), n, -10.f), -10.f) << n;  // the running extreme carries over
+    EXPECT_EQ(CostVolume::highestOf(v.data(), n, 20.f), 20.f) << n;
   }
   EXPECT_EQ(CostVolume().min(), HUGE_VALF);
   EXPECT_EQ(CostVolume().max(), -HUGE_VALF);
@@ -554,31 +593,111 @@ TEST(BioBinMatcher, LeftRightCheckInvalidatesTheOccludedBand)
 
 // Issue 21 item 3: the cost-volume loops (masked costs, DoG, fusion) compiled for AVX2 give the baseline
 // path's values bit for bit (no FMA, no reassociation), so the speed-up changes no output.
-TEST(CostSimd, Avx2PathGivesTheGenericBitsForBit)
+// Results compared bit for bit: no DFT plan may be measured (and round differently) between their runs.
+// RAII, so a failed assertion still restores the process-wide default.
+namespace
 {
-  // Whole matchers are compared bit for bit: no DFT plan may be measured (and round differently) between
-  // their runs. RAII, so a failed assertion still restores the process-wide default.
-  struct EstimatedPlansOnly
+struct EstimatedPlansOnly
+{
+  EstimatedPlansOnly() { biovision_v1::FourierTransform::setMeasurePolicy(0); }
+  ~EstimatedPlansOnly()
   {
-    EstimatedPlansOnly() { biovision_v1::FourierTransform::setMeasurePolicy(0); }
-    ~EstimatedPlansOnly()
-    {
-      biovision_v1::FourierTransform::setMeasurePolicy(biovision_v1::FourierTransform::kMeasureAfter);
-    }
-  } estimated_plans_only;
-  std::vector<CostSimd> simds{CostSimd::kGeneric};
-  if (bestCostSimd() == CostSimd::kAvx2)
-    simds.push_back(CostSimd::kAvx2);
-  else
-  {
-    std::fprintf(stderr, "no AVX2 on this CPU: the AVX2 cost path must be refused\n");
-    DisparityDog dog(1.0, 8.0, 0.4, 1.0, 0.5);
-    EXPECT_THROW(dog.setSimd(CostSimd::kAvx2), std::invalid_argument);
+    biovision_v1::FourierTransform::setMeasurePolicy(biovision_v1::FourierTransform::kMeasureAfter);
   }
+};
+}  // namespace
+
+TEST(BioBinMatcher, LevelCostsEqualTheStepByStepReference)
+{
+  // levelCosts() runs steps (b), (d), the modulation and (e) fused, one image row at a time; the reference
+  // runs each step over the whole level: descriptors, Hamming rows, the N_th smallest SAD by sorting, the
+  // modulation, then the two-volume DoG. Same arithmetic per cost, so the same bits.
+  const EstimatedPlansOnly estimated_plans_only;
+  const int width = 75, height = 30;  // 75: no multiple of 8 or 16
+  const cv::Mat bg = texture(cv::Size(width + 20, height), 41);
+  const cv::Mat left = bg(cv::Rect(10, 0, width, height)).clone(), right = bg(cv::Rect(14, 0, width, height)).clone();
+  BioBinParameters p;
+  p.max_disparity = 20;
+  BioBinMatcher matcher(p);
+  for (const size_t level : {size_t(0), size_t(1)})
+  {
+    const double sf = p.scaleFactor(level);
+    const int nd = static_cast<int>(std::ceil(p.max_disparity / sf)) + 1;
+    float max_cost = 0.f;
+    const CostVolume fused = matcher.levelCosts(level, left, right, nd, nullptr, &max_cost);
+
+    cv::Mat left_lab, right_lab, left_gray, right_gray;
+    cv::cvtColor(left, left_lab, cv::COLOR_BGR2Lab);
+    cv::cvtColor(right, right_lab, cv::COLOR_BGR2Lab);
+    cv::cvtColor(left, left_gray, cv::COLOR_BGR2GRAY);
+    cv::cvtColor(right, right_gray, cv::COLOR_BGR2GRAY);
+    left_gray.convertTo(left_gray, CV_32F, 1.0 / 255.0);
+    right_gray.convertTo(right_gray, CV_32F, 1.0 / 255.0);
+    biovision_v1::GaborParameters gabor;
+    gabor.wavelengths = {p.base_wavelength};
+    gabor.orientations = 8;
+    gabor.min_grid_wavelength = 0.0;
+    biovision_v1::SimpleCellBank bank(gabor);
+    const PixelDescriptorImage lc = PixelDescriptorImage::compute(bank.computeOddPairs(left_gray)[0]);
+    const PixelDescriptorImage rc = PixelDescriptorImage::compute(bank.computeOddPairs(right_gray)[0]);
+    const int n_th = std::clamp(static_cast<int>(std::lround(std::log2(std::max(2.0, p.max_disparity / sf)))), 1, nd);
+    const float damp = static_cast<float>(1.0 - p.kappa), boost = static_cast<float>(1.0 + p.kappa);
+    CostVolume masked(left.size(), nd);
+    for (int y = 0; y < height; ++y)
+    {
+      for (int k = 0; k < nd; ++k)
+        Hamming::row(lc.row(y), rc.row(y), width, k, 256.f, masked.slice(k).ptr<float>(y));
+      for (int x = 0; x < width; ++x)
+      {
+        std::vector<int> sad(nd);
+        for (int k = 0; k < nd; ++k)
+        {
+          sad[k] = 3 * 255 + 1;  // the disparity leaves the right image
+          if (x >= k)
+          {
+            sad[k] = 0;
+            for (int c = 0; c < 3; ++c)
+              sad[k] += std::abs(left_lab.at<cv::Vec3b>(y, x)[c] - right_lab.at<cv::Vec3b>(y, x - k)[c]);
+          }
+        }
+        std::vector<int> sorted = sad;
+        std::sort(sorted.begin(), sorted.end());
+        for (int k = 0; k < nd; ++k)
+          masked.slice(k).at<float>(y, x) *= sad[k] <= sorted[n_th - 1] ? damp : boost;
+      }
+    }
+    CostVolume reference;
+    DisparityDog(p.sigma1 / sf, p.sigma2 / sf, p.tau, p.alpha, p.beta).apply(masked, reference);
+    ASSERT_EQ(fused.disparities(), nd);
+    for (int k = 0; k < nd; ++k)
+      EXPECT_EQ(cv::norm(fused.slice(k), reference.slice(k), cv::NORM_INF), 0.0) << "level " << level << " slice " << k;
+    EXPECT_EQ(max_cost, reference.max()) << "level " << level;
+    EXPECT_GT(reference.max(), reference.min()) << "level " << level;  // real costs, not a constant volume
+  }
+}
+
+TEST(CostSimd, EveryPathGivesTheGenericBitsForBit)
+{
+  const EstimatedPlansOnly estimated_plans_only;
+  const std::vector<CostSimd> simds = availableCostSimds();
+  ASSERT_EQ(simds.front(), CostSimd::kGeneric);
+  EXPECT_EQ(bestCostSimd(), simds.back());
+  for (const CostSimd simd : {CostSimd::kAvx2, CostSimd::kAvx512})
+    if (std::find(simds.begin(), simds.end(), simd) == simds.end())
+    {
+      std::fprintf(stderr, "no %s on this CPU: that cost path must be refused\n", costSimdName(simd).c_str());
+      DisparityDog dog(1.0, 8.0, 0.4, 1.0, 0.5);
+      EXPECT_THROW(dog.setSimd(simd), std::invalid_argument);
+    }
+  std::fprintf(stderr, "cost paths on this CPU:");
+  for (const CostSimd simd : simds)
+    std::fprintf(stderr, " %s", costSimdName(simd).c_str());
+  std::fprintf(stderr, "\n");
   EXPECT_EQ(costSimdName(CostSimd::kGeneric), "generic");
   EXPECT_EQ(costSimdName(CostSimd::kAvx2), "avx2");
-  // DoG: widths that leave a remainder after 8 and 4 lanes, the recursive (sigma2 >= 2) and FIR broad pass.
-  for (const cv::Size size : {cv::Size(37, 3), cv::Size(64, 2), cv::Size(5, 4)})
+  EXPECT_EQ(costSimdName(CostSimd::kAvx512), "avx512");
+  // DoG: widths that leave a remainder after 16, 8 and 4 lanes, the recursive (sigma2 >= 2) and FIR broad pass.
+  for (const cv::Size size : {cv::Size(37, 3), cv::Size(64, 2), cv::Size(5, 4), cv::Size(93, 2)})
     for (const double sigma2 : {8.0, 1.5})
     {
       CostVolume in(size, 41);
@@ -893,14 +1012,13 @@ TEST(BioBinMatcher, BeatsBlockMatchingOnRealCones)
   EXPECT_LT(m.avgerr, 2.5);
 }
 
-// The spatial filter's rows on 32-bit masks (generic and AVX2) equal its scalar formulation bit for bit:
-// barriers (thin and a thick block with no open neighbour), frozen costs (values below Th_D), an early stop.
+// The spatial filter's rows on 32-bit masks (every cost path of this CPU) equal its scalar formulation bit
+// for bit: barriers (thin and a thick block with no open neighbour), frozen costs (values below Th_D), an
+// early stop.
 TEST(IterativeSpatialFilter, RowUpdateEqualsTheScalarFilter)
 {
-  std::vector<CostSimd> simds{CostSimd::kGeneric};
-  if (bestCostSimd() == CostSimd::kAvx2)
-    simds.push_back(CostSimd::kAvx2);
-  for (const cv::Size size : {cv::Size(37, 11), cv::Size(64, 9), cv::Size(5, 4)})
+  const std::vector<CostSimd> simds = availableCostSimds();
+  for (const cv::Size size : {cv::Size(37, 11), cv::Size(64, 9), cv::Size(5, 4), cv::Size(93, 3)})
     for (const double changing_fraction : {0.0, 0.5})
     {
       CostVolume in(size, 13);

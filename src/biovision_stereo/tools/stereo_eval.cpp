@@ -193,8 +193,8 @@ std::map<std::string, Matcher> makeMatchers(std::map<std::string, std::unique_pt
 
 nlohmann::ordered_json stageJson(const BioBinMatcher::StageTimes& t)
 {
-  return {{"prepare", t.prepare}, {"cells", t.cells},     {"costs", t.costs}, {"dog", t.dog},
-          {"fusion", t.fusion},   {"spatial", t.spatial}, {"wta", t.wta},     {"total", t.total}};
+  return {{"prepare", t.prepare}, {"cells", t.cells}, {"costs_dog", t.costs}, {"fusion", t.fusion},
+          {"spatial", t.spatial}, {"wta", t.wta},     {"total", t.total}};
 }
 
 nlohmann::ordered_json metricsJson(const DisparityMetrics& m, double seconds)
@@ -353,7 +353,6 @@ int main(int argc, char** argv)
         m.prepare += t.prepare / n;
         m.cells += t.cells / n;
         m.costs += t.costs / n;
-        m.dog += t.dog / n;
         m.fusion += t.fusion / n;
         m.spatial += t.spatial / n;
         m.wta += t.wta / n;

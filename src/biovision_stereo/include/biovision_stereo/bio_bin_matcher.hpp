@@ -55,7 +55,8 @@ public:
   /// Wall time of the stages of the last compute() [ms], summed over levels.
   struct StageTimes
   {
-    double prepare = 0, cells = 0, costs = 0, dog = 0, fusion = 0, spatial = 0, wta = 0, total = 0;
+    // costs: steps (b), (d) and (e), the DoG included (they run fused, one image row at a time).
+    double prepare = 0, cells = 0, costs = 0, fusion = 0, spatial = 0, wta = 0, total = 0;
   };
   const StageTimes& lastTimes() const { return times_; }
 
@@ -64,17 +65,22 @@ public:
 
   /// Steps (b)-(e) of one level: colour-masked Hamming costs after the DoG along disparity.
   /// left/right: 8-bit BGR at the level's size. barriers: CV_8U, non-zero on left line/edge events.
-  CostVolume levelCosts(size_t level, const cv::Mat& left, const cv::Mat& right, int disparities, cv::Mat* barriers);
+  /// max_cost: the returned volume's max() (found while the rows are written: no pass of its own).
+  CostVolume levelCosts(size_t level, const cv::Mat& left, const cv::Mat& right, int disparities, cv::Mat* barriers,
+                        float* max_cost = nullptr);
 
 private:
   /// The odd simple cells of one level (8 orientations as 4 CV_32FC2 pairs, full resolution, wavelength
   /// base_wavelength): the one place BioBin computes V1 responses for its descriptors. gray: CV_32F in [0, 1].
   std::vector<cv::Mat> oddResponses(size_t level, const cv::Mat& gray);
-  void fuseWithCoarser(CostVolume& costs, const CostVolume& coarser) const;
+  /// max_cost: costs.max(), which sets the fusion level L. Returns the fused costs' min() (found on the way).
+  float fuseWithCoarser(CostVolume& costs, float max_cost, const CostVolume& coarser) const;
   void spatialFilter(CostVolume& costs, const cv::Mat& barriers);
   DisparityMap winnerTakeAll(const CostVolume& costs, cv::Size input, double sf) const;
   /// parameters_.aggregation == "semi_global": the level's costs aggregated along paths, then WTA.
-  DisparityMap aggregateAndTakeWinners(const CostVolume& costs, const cv::Mat& barriers, cv::Size input, double sf);
+  /// lowest: costs.min(), the offset of the 16-bit costs.
+  DisparityMap aggregateAndTakeWinners(const CostVolume& costs, float lowest, const cv::Mat& barriers, cv::Size input,
+                                       double sf);
   /// Left disparities [level px, kInvalid] and the left-right check -> the map at input resolution.
   DisparityMap toInputResolution(cv::Mat& left_d, const cv::Mat& right_k, cv::Size input, double sf) const;
 

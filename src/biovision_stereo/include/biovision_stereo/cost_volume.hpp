@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -29,11 +30,19 @@ public:
   float min() const;
   /// Largest value over the whole volume, NaN ignored (-inf when empty or all NaN).
   float max() const;
+  /// The same over image rows [y0, y1) of every slice; std::out_of_range unless 0 <= y0 <= y1 <= height.
+  float min(int y0, int y1) const;
+  float max(int y0, int y1) const;
+  /// Least / largest of the n values from `values`, NaN ignored, and `start` (a running extreme).
+  static float lowestOf(const float* values, int n, float start = HUGE_VALF);
+  static float highestOf(const float* values, int n, float start = -HUGE_VALF);
   /// This volume resampled to `size` x `disparities` (bilinear in x, y; linear in k): the
   /// coarse-to-fine upsampling of the thesis (m and k multiplied by sf).
   CostVolume resampled(cv::Size size, int disparities) const;
 
 private:
+  void requireRows(int y0, int y1) const;
+
   cv::Size size_;
   std::vector<cv::Mat> slices_;
 };

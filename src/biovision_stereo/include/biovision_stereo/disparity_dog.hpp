@@ -22,6 +22,12 @@ public:
   /// The same filter written back into `costs` (one image row copied at a time: no second volume).
   void applyInPlace(CostVolume& costs) const;
   void applyReference(const CostVolume& in, CostVolume& out) const;
+  /// The filter on one image row of a volume: in[k] and out[k] point at the w costs of disparity k
+  /// (k = 0..nd-1, nd = in.size() = out.size()); out must not alias in. scratch: the caller's buffers
+  /// (reused between calls), so that rows can be filtered on several threads. BioBinMatcher runs it on
+  /// each row as soon as the row's costs exist, while they are still in the cache.
+  void applyRow(const std::vector<const float*>& in, int w, std::vector<float*>& out,
+                std::vector<std::vector<float>>& scratch) const;
 
   /// Instruction set of apply()/applyInPlace() (default bestCostSimd(); both give the same bits).
   /// Throws std::invalid_argument when this CPU lacks it.
@@ -38,11 +44,11 @@ private:
 
   static std::vector<float> taps(double sigma);
   static Recursive recursive(double sigma);
-  // in/out: one image row (w costs) per disparity. filterRow() runs filterRowBody() compiled for simd_.
-  void filterRow(const std::vector<const float*>& in, int w, std::vector<float*>& out,
-                 std::vector<std::vector<float>>& scratch) const;
+  // applyRow() runs filterRowBody() compiled for simd_.
   void filterRowAvx2(const std::vector<const float*>& in, int w, std::vector<float*>& out,
                      std::vector<std::vector<float>>& scratch) const;
+  void filterRowAvx512(const std::vector<const float*>& in, int w, std::vector<float*>& out,
+                       std::vector<std::vector<float>>& scratch) const;
   void filterRowGeneric(const std::vector<const float*>& in, int w, std::vector<float*>& out,
                         std::vector<std::vector<float>>& scratch) const;
   void filterRowBody(const std::vector<const float*>& in, int w, std::vector<float*>& out,

@@ -259,9 +259,9 @@ void BioBinDisparityNodelet::details(diagnostic_updater::DiagnosticStatusWrapper
   if (matcher_)
   {
     const auto& t = matcher_->lastTimes();
-    status.add("stage ms: cells/costs/dog/fusion/spatial/wta",
-               std::to_string(t.cells) + "/" + std::to_string(t.costs) + "/" + std::to_string(t.dog) + "/" +
-                   std::to_string(t.fusion) + "/" + std::to_string(t.spatial) + "/" + std::to_string(t.wta));
+    status.add("stage ms: cells/costs+dog/fusion/spatial/wta",
+               std::to_string(t.cells) + "/" + std::to_string(t.costs) + "/" + std::to_string(t.fusion) + "/" +
+                   std::to_string(t.spatial) + "/" + std::to_string(t.wta));
   }
 }
 }  // namespace biovision_stereo

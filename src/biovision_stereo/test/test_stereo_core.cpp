@@ -626,20 +626,21 @@ TEST(BioBinMatcher, LevelCostsEqualTheStepByStepReference)
     float max_cost = 0.f;
     const CostVolume fused = matcher.levelCosts(level, left, right, nd, nullptr, &max_cost);
 
-    cv::Mat left_lab, right_lab, left_gray, right_gray;
-    cv::cvtColor(left, left_lab, cv::COLOR_BGR2Lab);
-    cv::cvtColor(right, right_lab, cv::COLOR_BGR2Lab);
-    cv::cvtColor(left, left_gray, cv::COLOR_BGR2GRAY);
-    cv::cvtColor(right, right_gray, cv::COLOR_BGR2GRAY);
-    left_gray.convertTo(left_gray, CV_32F, 1.0 / 255.0);
-    right_gray.convertTo(right_gray, CV_32F, 1.0 / 255.0);
+    // Per view: 8-bit L*a*b* and the descriptors of the odd cells of its grey image in [0, 1].
     biovision_v1::GaborParameters gabor;
     gabor.wavelengths = {p.base_wavelength};
     gabor.orientations = 8;
     gabor.min_grid_wavelength = 0.0;
     biovision_v1::SimpleCellBank bank(gabor);
-    const PixelDescriptorImage lc = PixelDescriptorImage::compute(bank.computeOddPairs(left_gray)[0]);
-    const PixelDescriptorImage rc = PixelDescriptorImage::compute(bank.computeOddPairs(right_gray)[0]);
+    const auto view = [&bank](const cv::Mat& bgr, cv::Mat& lab) {
+      cv::Mat gray, unit;
+      cv::cvtColor(bgr, lab, cv::COLOR_BGR2Lab);
+      cv::cvtColor(bgr, gray, cv::COLOR_BGR2GRAY);
+      gray.convertTo(unit, CV_32F, 1.0 / 255.0);
+      return PixelDescriptorImage::compute(bank.computeOddPairs(unit)[0]);
+    };
+    cv::Mat left_lab, right_lab;
+    const PixelDescriptorImage lc = view(left, left_lab), rc = view(right, right_lab);
     const int n_th = std::clamp(static_cast<int>(std::lround(std::log2(std::max(2.0, p.max_disparity / sf)))), 1, nd);
     const float damp = static_cast<float>(1.0 - p.kappa), boost = static_cast<float>(1.0 + p.kappa);
     CostVolume masked(left.size(), nd);

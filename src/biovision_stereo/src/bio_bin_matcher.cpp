@@ -1,5 +1,6 @@
 #include "biovision_stereo/bio_bin_matcher.hpp"
 #include "biovision_stereo/occlusion_filling.hpp"
+#include "avx512_clone.hpp"
 
 #include <algorithm>
 #include <chrono>

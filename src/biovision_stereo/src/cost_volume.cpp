@@ -70,12 +70,12 @@ float extreme(const std::vector<cv::Mat>& slices, int y0, int y1)
 
 float CostVolume::lowestOf(const float* values, int n, float start)
 {
-  return extremeOf<true>(values, n, start);
+  return extremeOf<true>(values, n, std::isnan(start) ? HUGE_VALF : start);
 }
 
 float CostVolume::highestOf(const float* values, int n, float start)
 {
-  return extremeOf<false>(values, n, start);
+  return extremeOf<false>(values, n, std::isnan(start) ? -HUGE_VALF : start);
 }
 
 float CostVolume::min() const

@@ -1,7 +1,10 @@
 #include "biovision_stereo/disparity_dog.hpp"
 
 #include <algorithm>
+#include "avx512_clone.hpp"
 #include <cmath>
+#include <string>
+#include <stdexcept>
 
 #include <opencv2/core/utility.hpp>
 
@@ -122,6 +125,9 @@ void DisparityDog::setSimd(CostSimd simd)
 void DisparityDog::applyRow(const std::vector<const float*>& in, int w, std::vector<float*>& out,
                             std::vector<std::vector<float>>& scratch) const
 {
+  if (in.empty() || in.size() != out.size() || w < 0)
+    throw std::invalid_argument("DisparityDog::applyRow: needs one input and one output row per disparity (" +
+                                std::to_string(in.size()) + " and " + std::to_string(out.size()) + "), w >= 0");
   if (simd_ == CostSimd::kAvx512)
     filterRowAvx512(in, w, out, scratch);
   else if (simd_ == CostSimd::kAvx2)
@@ -171,6 +177,8 @@ void DisparityDog::apply(const CostVolume& in, CostVolume& out) const
 {
   out = CostVolume(in.size(), in.disparities(), 0.f);
   const int nd = in.disparities(), w = in.size().width;
+  if (nd == 0)
+    return;  // nothing to filter
   cv::parallel_for_(cv::Range(0, in.size().height), [&](const cv::Range& rows) {
     std::vector<const float*> i(nd);
     std::vector<float*> o(nd);
@@ -190,6 +198,8 @@ void DisparityDog::apply(const CostVolume& in, CostVolume& out) const
 void DisparityDog::applyInPlace(CostVolume& costs) const
 {
   const int nd = costs.disparities(), w = costs.size().width;
+  if (nd == 0)
+    return;
   cv::parallel_for_(cv::Range(0, costs.size().height), [&](const cv::Range& rows) {
     std::vector<float> copy(size_t(nd) * w);  // one image row of the volume: the filter's input
     std::vector<const float*> i(nd);
@@ -213,6 +223,8 @@ void DisparityDog::applyReference(const CostVolume& in, CostVolume& out) const
 {
   out = CostVolume(in.size(), in.disparities(), 0.f);
   const int nd = in.disparities(), w = in.size().width;
+  if (nd == 0)
+    return;  // nothing to filter
   std::vector<const float*> i(nd);
   std::vector<float*> o(nd);
   for (int y = 0; y < in.size().height; ++y)

@@ -1,6 +1,7 @@
 #include "biovision_stereo/iterative_spatial_filter.hpp"
 
 #include <atomic>
+#include "avx512_clone.hpp"
 #include <cmath>
 #include <stdexcept>
 #include <vector>

@@ -275,6 +275,17 @@ TEST(DisparityDog, RecursiveBroadGaussianMatchesTheExactFir)
   narrow.applyInPlace(narrow_in_place);
   for (int k = 0; k < 60; ++k)
     EXPECT_EQ(cv::norm(reference.slice(k), narrow_in_place.slice(k), cv::NORM_INF), 0.0) << "slice " << k;
+  // One row at a time needs a row per disparity in and out; a volume without disparities is left alone.
+  std::vector<std::vector<float>> scratch;
+  std::vector<float*> none;
+  EXPECT_THROW(dog.applyRow({}, 5, none, scratch), std::invalid_argument);
+  std::vector<float> row(5, 1.f), out_row(5);
+  std::vector<float*> two{out_row.data(), out_row.data()};
+  EXPECT_THROW(dog.applyRow({row.data()}, 5, two, scratch), std::invalid_argument);
+  CostVolume empty(cv::Size(5, 3), 0), empty_out;
+  EXPECT_NO_THROW(dog.applyInPlace(empty));
+  EXPECT_NO_THROW(dog.apply(empty, empty_out));
+  EXPECT_EQ(empty_out.disparities(), 0);
 }
 
 TEST(CostVolume, MinimumAndMaximumOverEverySliceIgnoreNaN)
@@ -330,6 +341,8 @@ TEST(CostVolume, MinimumAndMaximumOverEverySliceIgnoreNaN)
     EXPECT_EQ(CostVolume::highestOf(v.data(), n), hi) << n;
     EXPECT_EQ(CostVolume::lowestOf(v.data(), n, -10.f), -10.f) << n;  // the running extreme carries over
     EXPECT_EQ(CostVolume::highestOf(v.data(), n, 20.f), 20.f) << n;
+    EXPECT_EQ(CostVolume::lowestOf(v.data(), n, std::numeric_limits<float>::quiet_NaN()), lo) << n;
+    EXPECT_EQ(CostVolume::highestOf(v.data(), n, std::numeric_limits<float>::quiet_NaN()), hi) << n;
   }
   EXPECT_EQ(CostVolume().min(), HUGE_VALF);
   EXPECT_EQ(CostVolume().max(), -HUGE_VALF);

@@ -26,7 +26,3 @@ std::string costSimdName(CostSimd simd);
 /// Throws std::invalid_argument when `simd` needs an instruction set this CPU lacks.
 void requireCostSimd(CostSimd simd);
 }  // namespace biovision_stereo
-
-/// Function attributes of the kAvx512 clones: AVX-512F/BW, 512-bit auto-vectorisation (GCC prefers 256 bits
-/// otherwise), every call inlined into the clone (flatten) so that the callees' loops use the same target.
-#define BIOVISION_STEREO_AVX512_CLONE __attribute__((target("avx2,avx512f,avx512bw,prefer-vector-width=512"), flatten))

@@ -33,7 +33,8 @@ public:
   /// The same over image rows [y0, y1) of every slice; std::out_of_range unless 0 <= y0 <= y1 <= height.
   float min(int y0, int y1) const;
   float max(int y0, int y1) const;
-  /// Least / largest of the n values from `values`, NaN ignored, and `start` (a running extreme).
+  /// Least / largest of the n values from `values` and `start` (a running extreme), NaN ignored: `start`
+  /// when n <= 0 or every value is NaN, and a NaN `start` counts as +inf / -inf.
   static float lowestOf(const float* values, int n, float start = HUGE_VALF);
   static float highestOf(const float* values, int n, float start = -HUGE_VALF);
   /// This volume resampled to `size` x `disparities` (bilinear in x, y; linear in k): the

@@ -24,7 +24,8 @@ public:
   void applyReference(const CostVolume& in, CostVolume& out) const;
   /// The filter on one image row of a volume: in[k] and out[k] point at the w costs of disparity k
   /// (k = 0..nd-1, nd = in.size() = out.size()); out must not alias in. scratch: the caller's buffers
-  /// (reused between calls), so that rows can be filtered on several threads. BioBinMatcher runs it on
+  /// (reused between calls), so that rows can be filtered on several threads. Throws std::invalid_argument
+  /// when nd = 0 or in and out differ in length. BioBinMatcher runs it on
   /// each row as soon as the row's costs exist, while they are still in the cache.
   void applyRow(const std::vector<const float*>& in, int w, std::vector<float*>& out,
                 std::vector<std::vector<float>>& scratch) const;

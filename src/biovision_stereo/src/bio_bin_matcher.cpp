@@ -429,6 +429,9 @@ DisparityMap BioBinMatcher::toInputResolution(cv::Mat& left_d, const cv::Mat& ri
   out.max_disparity = parameters_.max_disparity;
   const double value_scale = double(input.width) / w;  // level disparities -> input pixels
   cv::Mat scaled = left_d * value_scale;
+  // A level's disparity count is rounded up (ceil(max / sf) + 1), so where max_disparity / sf is no
+  // integer its last disparity lies up to sf - 1 px beyond max_disparity: the map keeps its declared range.
+  scaled = cv::min(scaled, parameters_.max_disparity);
   scaled.setTo(DisparityMap::kInvalid, left_d < 0);
   if (size == input)
     out.disparity = scaled;

@@ -573,6 +573,25 @@ TEST(BioBinMatcher, FastModeFindsTheDisparityAtQuarterSize)
   EXPECT_GT(good, 0.9 * n) << good << " of " << n;
 }
 
+TEST(BioBinMatcher, DisparitiesStayWithinMaxDisparity)
+{
+  // One level at quarter size with max_disparity 30: the level's disparities run to ceil(30 / 4) = 8, i.e.
+  // 32 px. A scene at 32 px must come back at 30, not beyond the map's declared range.
+  const int width = 320, height = 120, d = 32;
+  const cv::Mat wide = texture(cv::Size(width + 100, height), 19, 8);
+  const cv::Mat left = wide(cv::Rect(60, 0, width, height)).clone();
+  const cv::Mat right = wide(cv::Rect(60 + d, 0, width, height)).clone();
+  BioBinParameters p;
+  p.wavelengths = {16.0};
+  p.max_disparity = 30;
+  BioBinMatcher matcher(p);
+  const cv::Mat disparity = matcher.compute(left, right).disparity;
+  double lowest = 0, highest = 0;
+  cv::minMaxLoc(disparity, &lowest, &highest, nullptr, nullptr, disparity >= 0);
+  EXPECT_EQ(highest, 30.0);  // reached (the scene lies beyond it) and never exceeded
+  EXPECT_GE(cv::countNonZero(disparity == 30.f), width * height / 2);
+}
+
 TEST(BioBinMatcher, LeftRightCheckInvalidatesTheOccludedBand)
 {
   // Background at disparity 4, a foreground square at disparity 14: left of the square, a band of

@@ -269,7 +269,9 @@ TEST(BaseAttractorFixedPoints, BlockedInANarrowGapWithTheGoalBehindTurnsRoundToI
     // Turning towards the plant (margin side) the margin stops it (blocked); turning away it creeps no faster
     // than margin_speed, but the goal behind holds it turning in place.
     if (bearing > 0)
+    {
       EXPECT_EQ(out.status, BaseAttractor::Status::kBlocked) << bearing;
+    }
     EXPECT_EQ(out.linear, 0.0) << bearing;
     EXPECT_GT(out.angular * (bearing > 0 ? 1 : -1), 0.5 * a.parameters().alpha_goal * std::sin(std::abs(bearing)))
         << "turns towards the goal at " << bearing << " rad";

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -47,6 +48,15 @@ cv::Mat texture(cv::Size size, unsigned seed, int blob = 3)
   cv::Mat big;
   cv::resize(small, big, cv::Size(small.cols * blob, small.rows * blob), 0, 0, cv::INTER_CUBIC);
   return big(cv::Rect(0, 0, size.width, size.height)).clone();
+}
+
+// A textured fronto-parallel plane at disparity d: a texture `extra` px wider than `size`, the left view
+// from column `margin`, the right from margin + d, so that left(x) = right(x - d).
+std::pair<cv::Mat, cv::Mat> shiftedPair(cv::Size size, int d, int margin, int extra, unsigned seed, int blob = 3)
+{
+  const cv::Mat wide = texture(cv::Size(size.width + extra, size.height), seed, blob);
+  return {wide(cv::Rect(margin, 0, size.width, size.height)).clone(),
+          wide(cv::Rect(margin + d, 0, size.width, size.height)).clone()};
 }
 
 std::string sharedData()
@@ -526,10 +536,7 @@ TEST(BioBinMatcher, ShiftedTextureGivesTheExactDisparity)
   for (const std::string aggregation : {"iterative", "semi_global"})
     for (int d : {0, 5, 12})
     {
-      const cv::Mat wide = texture(cv::Size(width + 40, height), 3 + d);
-      const cv::Mat left = wide(cv::Rect(20, 0, width, height)).clone();
-      // left(x) = wide(20 + x), right(x) = wide(20 + d + x): left(x) = right(x - d).
-      const cv::Mat right = wide(cv::Rect(20 + d, 0, width, height)).clone();
+      const auto [left, right] = shiftedPair(cv::Size(width, height), d, 20, 40, 3 + d);
       BioBinParameters p;
       p.max_disparity = 24;
       p.aggregation = aggregation;
@@ -551,17 +558,20 @@ TEST(BioBinMatcher, ShiftedTextureGivesTheExactDisparity)
     }
 }
 
+// The fast mode (one level, lambda 16: quarter size) on a pair.
+static cv::Mat fastModeDisparity(const cv::Mat& left, const cv::Mat& right, int max_disparity)
+{
+  BioBinParameters p;
+  p.wavelengths = {16.0};
+  p.max_disparity = max_disparity;
+  return BioBinMatcher(p).compute(left, right).disparity;
+}
+
 TEST(BioBinMatcher, FastModeFindsTheDisparityAtQuarterSize)
 {
   const int width = 320, height = 240, d = 16;
-  const cv::Mat wide = texture(cv::Size(width + 60, height), 9, 8);
-  const cv::Mat left = wide(cv::Rect(40, 0, width, height)).clone();
-  const cv::Mat right = wide(cv::Rect(40 + d, 0, width, height)).clone();
-  BioBinParameters p;
-  p.wavelengths = {16.0};
-  p.max_disparity = 48;
-  BioBinMatcher matcher(p);
-  const cv::Mat disparity = matcher.compute(left, right).disparity;
+  const auto [left, right] = shiftedPair(cv::Size(width, height), d, 40, 60, 9, 8);
+  const cv::Mat disparity = fastModeDisparity(left, right, 48);
   ASSERT_EQ(disparity.size(), left.size()) << "output comes back at input resolution";
   int good = 0, n = 0;
   for (int y = 20; y < height - 20; y += 2)
@@ -578,14 +588,8 @@ TEST(BioBinMatcher, DisparitiesStayWithinMaxDisparity)
   // One level at quarter size with max_disparity 30: the level's disparities run to ceil(30 / 4) = 8, i.e.
   // 32 px. A scene at 32 px must come back at 30, not beyond the map's declared range.
   const int width = 320, height = 120, d = 32;
-  const cv::Mat wide = texture(cv::Size(width + 100, height), 19, 8);
-  const cv::Mat left = wide(cv::Rect(60, 0, width, height)).clone();
-  const cv::Mat right = wide(cv::Rect(60 + d, 0, width, height)).clone();
-  BioBinParameters p;
-  p.wavelengths = {16.0};
-  p.max_disparity = 30;
-  BioBinMatcher matcher(p);
-  const cv::Mat disparity = matcher.compute(left, right).disparity;
+  const auto [left, right] = shiftedPair(cv::Size(width, height), d, 60, 100, 19, 8);
+  const cv::Mat disparity = fastModeDisparity(left, right, 30);
   double lowest = 0, highest = 0;
   cv::minMaxLoc(disparity, &lowest, &highest, nullptr, nullptr, disparity >= 0);
   EXPECT_EQ(highest, 30.0);  // reached (the scene lies beyond it) and never exceeded

@@ -514,10 +514,13 @@ DisparityMap BioBinMatcher::compute(const cv::Mat& left_in, const cv::Mat& right
     CostVolume costs = levelCosts(s, l, r, disparities, need_barriers ? &barriers : nullptr, &max_cost);
     auto t = Clock::now();
     const bool fused = previous.disparities() > 0;
-    const float lowest = fused ? fuseWithCoarser(costs, max_cost, previous) : HUGE_VALF;
-    times_.fusion += msSince(t);
-    if (previous.disparities() > 0)
+    float lowest = 0.f;  // the fused costs' min: the aggregation's 16-bit offset
+    if (fused)
+    {
+      lowest = fuseWithCoarser(costs, max_cost, previous);
       spare_[s + 1] = std::move(previous);
+    }
+    times_.fusion += msSince(t);
     if (semi_global)
     {
       DisparityMap result = aggregateAndTakeWinners(costs, fused ? lowest : costs.min(), barriers, left.size(), sf);

@@ -1,12 +1,13 @@
 #include "biovision_stereo/disparity_dog.hpp"
 
 #include <algorithm>
-#include "avx512_clone.hpp"
 #include <cmath>
-#include <string>
 #include <stdexcept>
+#include <string>
 
 #include <opencv2/core/utility.hpp>
+
+#include "avx512_clone.hpp"
 
 namespace biovision_stereo
 {

@@ -1,13 +1,14 @@
 #include "biovision_stereo/iterative_spatial_filter.hpp"
 
 #include <atomic>
-#include "avx512_clone.hpp"
 #include <cmath>
 #include <stdexcept>
 #include <vector>
 
 #include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
+
+#include "avx512_clone.hpp"
 
 namespace biovision_stereo
 {

@@ -51,36 +51,69 @@ inline std::uint16_t stepGeneric(const Step& s, const std::uint16_t* c, const st
   return m;
 }
 
-__attribute__((target("avx2"))) inline std::uint16_t stepAvx2(const Step& s, const std::uint16_t* c,
-                                                              const std::uint16_t* prev, std::uint16_t prev_min,
-                                                              std::uint16_t p2, std::uint16_t* out, std::uint16_t* sum,
-                                                              bool first)
+/// One pixel's steps on all paths of a sweep that reach it, with 16 lanes of AVX2: the values of
+/// stepGeneric for path 0 with first = true, then the others with first = false (the same saturating sums
+/// in the same order), but the sum stays in a register and is stored once per vector and the pixel's costs
+/// are loaded once: per 16 lanes and 4 paths, 4 x (3 loads + 1 store) + 2 memory operations instead of
+/// 4 x (5 loads + 2 stores) when each path's step loaded and stored the sum itself.
+struct PathStep
+{
+  const std::uint16_t* prev;  // the predecessor's L_r (kBlocked guards at [-1] and [stride])
+  std::uint16_t prev_min;     // its minimum over 0..nd-1
+  std::uint16_t* out;         // this pixel's L_r
+};
+
+template <int kPaths>
+__attribute__((target("avx2"))) inline void stepsAvx2(const Step& s, const std::uint16_t* c,
+                                                      const PathStep (&paths)[kPaths], std::uint16_t p2,
+                                                      std::uint16_t* sum, std::uint16_t (&mins)[kPaths])
 {
   const __m256i vp1 = _mm256_set1_epi16(static_cast<short>(s.p1));
-  const __m256i vjump = _mm256_set1_epi16(static_cast<short>(prev_min + p2));
-  const __m256i vmin = _mm256_set1_epi16(static_cast<short>(prev_min));
   const __m256i lane = _mm256_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-  __m256i m = _mm256_set1_epi16(static_cast<short>(kBlocked));
+  __m256i vjump[kPaths], vmin[kPaths], m[kPaths];
+  for (int p = 0; p < kPaths; ++p)
+  {
+    vjump[p] = _mm256_set1_epi16(static_cast<short>(paths[p].prev_min + p2));
+    vmin[p] = _mm256_set1_epi16(static_cast<short>(paths[p].prev_min));
+    m[p] = _mm256_set1_epi16(static_cast<short>(kBlocked));
+  }
   for (int d = 0; d < s.stride; d += 16)
   {
-    const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(prev + d));
-    const __m256i b = _mm256_adds_epu16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(prev + d - 1)), vp1);
-    const __m256i e = _mm256_adds_epu16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(prev + d + 1)), vp1);
-    const __m256i v = _mm256_min_epu16(_mm256_min_epu16(a, vjump), _mm256_min_epu16(b, e));
-    __m256i l = _mm256_add_epi16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(c + d)),
-                                 _mm256_sub_epi16(v, vmin));
-    if (d + 16 > s.nd)  // blocked lanes d + i >= nd (only the last vector holds any)
+    const __m256i cost = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(c + d));
+    const bool last = d + 16 > s.nd;  // blocked lanes d + i >= nd (only the last vector holds any)
+    const __m256i blocked = last ? _mm256_cmpgt_epi16(lane, _mm256_set1_epi16(static_cast<short>(s.nd - d - 1)))
+                                 : _mm256_setzero_si256();
+    __m256i total = _mm256_setzero_si256();
+    for (int p = 0; p < kPaths; ++p)
     {
-      const __m256i blocked = _mm256_cmpgt_epi16(lane, _mm256_set1_epi16(static_cast<short>(s.nd - d - 1)));
-      l = _mm256_or_si256(l, blocked);
+      const std::uint16_t* prev = paths[p].prev;
+      const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(prev + d));
+      const __m256i b = _mm256_adds_epu16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(prev + d - 1)), vp1);
+      const __m256i e = _mm256_adds_epu16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(prev + d + 1)), vp1);
+      const __m256i v = _mm256_min_epu16(_mm256_min_epu16(a, vjump[p]), _mm256_min_epu16(b, e));
+      __m256i l = _mm256_add_epi16(cost, _mm256_sub_epi16(v, vmin[p]));
+      if (last)
+        l = _mm256_or_si256(l, blocked);
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(paths[p].out + d), l);
+      m[p] = _mm256_min_epu16(m[p], l);
+      total = p == 0 ? l : _mm256_adds_epu16(total, l);
     }
-    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + d), l);
-    m = _mm256_min_epu16(m, l);
-    __m256i* sp = reinterpret_cast<__m256i*>(sum + d);
-    _mm256_storeu_si256(sp, first ? l : _mm256_adds_epu16(_mm256_loadu_si256(sp), l));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(sum + d), total);
   }
-  const __m128i m8 = _mm_min_epu16(_mm256_castsi256_si128(m), _mm256_extracti128_si256(m, 1));
-  return static_cast<std::uint16_t>(_mm_cvtsi128_si32(_mm_minpos_epu16(m8)) & 0xFFFF);
+  for (int p = 0; p < kPaths; ++p)
+  {
+    const __m128i m8 = _mm_min_epu16(_mm256_castsi256_si128(m[p]), _mm256_extracti128_si256(m[p], 1));
+    mins[p] = static_cast<std::uint16_t>(_mm_cvtsi128_si32(_mm_minpos_epu16(m8)) & 0xFFFF);
+  }
+}
+
+/// stepsAvx2's generic counterpart: the steps one after the other.
+template <int kPaths>
+inline void stepsGeneric(const Step& s, const std::uint16_t* c, const PathStep (&paths)[kPaths], std::uint16_t p2,
+                         std::uint16_t* sum, std::uint16_t (&mins)[kPaths])
+{
+  for (int p = 0; p < kPaths; ++p)
+    mins[p] = stepGeneric(s, c, paths[p].prev, paths[p].prev_min, p2, paths[p].out, sum, p == 0);
 }
 
 /// A path buffer of n pixels with guards of blocked values at both ends.
@@ -98,16 +131,12 @@ private:
 };
 
 // Flattened into the two entry points below, so that the AVX2 one compiles its loops (and inlines
-// stepAvx2) for AVX2 while the generic one stays on the baseline instruction set.
-template <bool kAvx2>
-void sweep(const std::vector<std::uint16_t>& costs, int w, int h, int nd, const cv::Mat& barriers, int p1, int p2,
-           int p2_barrier, int paths, bool backward, std::vector<std::uint16_t>& sums)
+// stepsAvx2) for AVX2 while the generic one stays on the baseline instruction set.
+template <bool kAvx2, int kVertical>
+void sweepPaths(const std::vector<std::uint16_t>& costs, int w, int h, int nd, const cv::Mat& barriers, int p1, int p2,
+                int p2_barrier, bool backward, std::vector<std::uint16_t>& sums)
 {
-  const auto step = [](const Step& s, const std::uint16_t* c, const std::uint16_t* prev, std::uint16_t prev_min,
-                       std::uint16_t p2, std::uint16_t* out, std::uint16_t* sum, bool first) {
-    return kAvx2 ? stepAvx2(s, c, prev, prev_min, p2, out, sum, first)
-                 : stepGeneric(s, c, prev, prev_min, p2, out, sum, first);
-  };
+  constexpr int kPaths = 1 + kVertical;  // along the row, then from the previous row
   const int stride = SemiGlobalAggregation::stride(nd);
   const Step s{nd, stride, static_cast<std::uint16_t>(p1)};
   const auto p2_edge = static_cast<std::uint16_t>(std::max(p1, p2_barrier));
@@ -115,11 +144,11 @@ void sweep(const std::vector<std::uint16_t>& costs, int w, int h, int nd, const 
   // The predecessor of a path's first pixel: zero costs, so that L = C there.
   PathRow start(1, stride);
   std::fill(start.at(0), start.at(0) + nd, 0);
-  start.minAt(0) = 0;
-  const int vertical = paths == 8 ? 3 : 1;  // (diagonal, straight, other diagonal) or straight only
-  std::vector<PathRow> prev(vertical, PathRow(w, stride)), cur(vertical, PathRow(w, stride));
+  std::vector<PathRow> prev(kVertical, PathRow(w, stride)), cur(kVertical, PathRow(w, stride));
   PathRow horizontal(2, stride);
   const int dir = backward ? -1 : 1;  // forward: predecessors left and above; backward: right and below
+  PathStep paths[kPaths];
+  std::uint16_t mins[kPaths];
   for (int i = 0; i < h; ++i)
   {
     const int y = backward ? h - 1 - i : i;
@@ -128,27 +157,38 @@ void sweep(const std::vector<std::uint16_t>& costs, int w, int h, int nd, const 
     {
       const int x = backward ? w - 1 - j : j;
       const size_t index = (size_t(y) * w + x) * stride;
-      const std::uint16_t* c = costs.data() + index;
-      std::uint16_t* sum = sums.data() + index;
       const std::uint16_t pen2 = barrier_row && barrier_row[x] ? p2_edge : static_cast<std::uint16_t>(p2);
-      // Along the row (ping-pong between two buffers: a step must not overwrite its predecessor); the
-      // sweep's first path at this pixel, so it stores the sum.
-      std::uint16_t* hout = horizontal.at(j & 1);
-      if (j == 0)
-        horizontal.minAt(0) = step(s, c, start.at(0), 0, pen2, hout, sum, true);
-      else
-        horizontal.minAt(0) = step(s, c, horizontal.at((j - 1) & 1), horizontal.minAt(0), pen2, hout, sum, true);
+      // Along the row: ping-pong between two buffers (a step must not overwrite its predecessor).
+      paths[0] = j == 0 ? PathStep{start.at(0), 0, horizontal.at(0)}
+                        : PathStep{horizontal.at((j - 1) & 1), horizontal.minAt(0), horizontal.at(j & 1)};
       // From the previous row: predecessor columns x - dir (diagonal), x, x + dir (other diagonal).
-      for (int v = 0; v < vertical; ++v)
+      for (int v = 0; v < kVertical; ++v)
       {
-        const int qx = x + (vertical == 3 ? (v - 1) * dir : 0);
+        const int qx = x + (kVertical == 3 ? (v - 1) * dir : 0);
         const bool first = i == 0 || qx < 0 || qx >= w;
-        cur[v].minAt(x) = first ? step(s, c, start.at(0), 0, pen2, cur[v].at(x), sum, false)
-                                : step(s, c, prev[v].at(qx), prev[v].minAt(qx), pen2, cur[v].at(x), sum, false);
+        paths[1 + v] = first ? PathStep{start.at(0), 0, cur[v].at(x)}
+                             : PathStep{prev[v].at(qx), prev[v].minAt(qx), cur[v].at(x)};
       }
+      if constexpr (kAvx2)
+        stepsAvx2(s, costs.data() + index, paths, pen2, sums.data() + index, mins);
+      else
+        stepsGeneric(s, costs.data() + index, paths, pen2, sums.data() + index, mins);
+      horizontal.minAt(0) = mins[0];
+      for (int v = 0; v < kVertical; ++v)
+        cur[v].minAt(x) = mins[1 + v];
     }
     std::swap(prev, cur);
   }
+}
+
+template <bool kAvx2>
+void sweep(const std::vector<std::uint16_t>& costs, int w, int h, int nd, const cv::Mat& barriers, int p1, int p2,
+           int p2_barrier, int paths, bool backward, std::vector<std::uint16_t>& sums)
+{
+  if (paths == 8)  // (diagonal, straight, other diagonal) from the previous row
+    sweepPaths<kAvx2, 3>(costs, w, h, nd, barriers, p1, p2, p2_barrier, backward, sums);
+  else
+    sweepPaths<kAvx2, 1>(costs, w, h, nd, barriers, p1, p2, p2_barrier, backward, sums);
 }
 __attribute__((target("avx2"), flatten)) void sweepAvx2(const std::vector<std::uint16_t>& costs, int w, int h, int nd,
                                                         const cv::Mat& barriers, int p1, int p2, int p2_barrier,

@@ -55,7 +55,7 @@ DisparityDog::Recursive DisparityDog::recursive(double sigma)
 }
 
 inline void DisparityDog::firAdd(const std::vector<const float*>& in, int w, const std::vector<float>& t, float gain,
-                                 std::vector<float*>& out) const
+                                 std::vector<float*>& out, bool assign) const
 {
   const int nd = static_cast<int>(in.size()), r = static_cast<int>(t.size() / 2);
   for (int k = 0; k < nd; ++k)
@@ -63,8 +63,12 @@ inline void DisparityDog::firAdd(const std::vector<const float*>& in, int w, con
     float* o = out[k];
     const float* c = in[k];
     const float t0 = gain * t[r];
-    for (int x = 0; x < w; ++x)
-      o[x] += t0 * c[x];
+    if (assign)  // 0 + product, as on a zeroed row: the same value and sign of zero
+      for (int x = 0; x < w; ++x)
+        o[x] = 0.f + t0 * c[x];
+    else
+      for (int x = 0; x < w; ++x)
+        o[x] += t0 * c[x];
     for (int j = 1; j <= r; ++j)
     {
       const float tj = gain * t[r + j];
@@ -165,9 +169,8 @@ __attribute__((flatten)) void DisparityDog::filterRowGeneric(const std::vector<c
 inline void DisparityDog::filterRowBody(const std::vector<const float*>& in, int w, std::vector<float*>& out,
                                         std::vector<std::vector<float>>& scratch) const
 {
-  for (float* o : out)
-    std::fill(o, o + w, 0.f);
-  firAdd(in, w, narrow_, static_cast<float>(tau_ * alpha_), out);
+  // The narrow FIR's first term assigns: no zeroing pass over the output rows first.
+  firAdd(in, w, narrow_, static_cast<float>(tau_ * alpha_), out, true);
   if (broad_recursive_.enabled)
     recursiveAdd(in, w, static_cast<float>(-tau_ * beta_), out, scratch);
   else

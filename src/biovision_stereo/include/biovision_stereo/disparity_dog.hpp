@@ -54,8 +54,9 @@ private:
                         std::vector<std::vector<float>>& scratch) const;
   void filterRowBody(const std::vector<const float*>& in, int w, std::vector<float*>& out,
                      std::vector<std::vector<float>>& scratch) const;
+  /// out += gain * (taps * in) along disparity; with `assign`, out's old values are taken as 0 (not read).
   void firAdd(const std::vector<const float*>& in, int w, const std::vector<float>& taps, float gain,
-              std::vector<float*>& out) const;
+              std::vector<float*>& out, bool assign = false) const;
   void recursiveAdd(const std::vector<const float*>& in, int w, float gain, std::vector<float*>& out,
                     std::vector<std::vector<float>>& scratch) const;
 

@@ -792,7 +792,8 @@ TEST(CostSimd, EveryPathGivesTheGenericBitsForBit)
   }
 }
 
-// Brute-force reference of OcclusionFilling: per invalid pixel, scan left and right for the nearest valid value.
+// Brute-force reference of OcclusionFilling: per invalid pixel, walk each of the 16 directions to the first valid
+// pixel and take the lower median of what was found.
 static cv::Mat referenceFill(const cv::Mat& in)
 {
   cv::Mat out = in.clone();
@@ -801,17 +802,18 @@ static cv::Mat referenceFill(const cv::Mat& in)
     {
       if (in.at<float>(y, x) >= 0)
         continue;
-      float l = -1, r = -1;
-      for (int i = x - 1; i >= 0 && l < 0; --i)
-        l = in.at<float>(y, i) >= 0 ? in.at<float>(y, i) : -1;
-      for (int i = x + 1; i < in.cols && r < 0; ++i)
-        r = in.at<float>(y, i) >= 0 ? in.at<float>(y, i) : -1;
-      if (l >= 0 && r >= 0)
-        out.at<float>(y, x) = std::min(l, r);
-      else if (l >= 0)
-        out.at<float>(y, x) = l;
-      else if (r >= 0)
-        out.at<float>(y, x) = r;
+      std::vector<float> found;
+      for (const cv::Point& step : OcclusionFilling::directions())
+        for (cv::Point q(x + step.x, y + step.y); q.x >= 0 && q.y >= 0 && q.x < in.cols && q.y < in.rows; q += step)
+          if (in.at<float>(q) >= 0)
+          {
+            found.push_back(in.at<float>(q));
+            break;
+          }
+      if (found.empty())
+        continue;
+      std::sort(found.begin(), found.end());
+      out.at<float>(y, x) = found[(found.size() - 1) / 2];
     }
   return out;
 }
@@ -819,9 +821,9 @@ static cv::Mat referenceFill(const cv::Mat& in)
 TEST(OcclusionFilling, EqualsTheBruteForceReference)
 {
   std::mt19937 rng(5);
-  for (int trial = 0; trial < 20; ++trial)
+  for (int trial = 0; trial < 40; ++trial)
   {
-    const int w = 1 + trial * 3, h = 1 + trial % 4;
+    const int w = 1 + trial * 3, h = 1 + trial % 7 * 3;
     std::uniform_real_distribution<float> value(0.f, 30.f);
     std::bernoulli_distribution invalid(trial % 5 == 4 ? 0.95 : 0.4);
     cv::Mat d(h, w, CV_32F);
@@ -829,11 +831,25 @@ TEST(OcclusionFilling, EqualsTheBruteForceReference)
       for (int x = 0; x < w; ++x)
         d.at<float>(y, x) = invalid(rng) ? -1.f : value(rng);
     if (trial == 3)
-      d.row(0).setTo(-1.f);  // a row without any valid pixel stays invalid
+      d.setTo(-1.f);  // no valid pixel at all: everything stays invalid
+    if (trial == 10)
+      d(cv::Rect(w / 4, h / 4, w / 2, h / 2)).setTo(-1.f);  // a large hole: values carried across it
     const cv::Mat expected = referenceFill(d);
     OcclusionFilling::fill(d);
     EXPECT_EQ(cv::norm(d, expected, cv::NORM_INF), 0.0) << "trial " << trial;
   }
+  // One hole in a known surrounding: 8 neighbours at 1, the 8 knight's-move pixels at 5: a tie, which goes to
+  // the lower value (the farther surface: the occluded side).
+  cv::Mat d(5, 5, CV_32F, cv::Scalar(5.f));
+  d(cv::Rect(1, 1, 3, 3)).setTo(1.f);
+  d.at<float>(2, 2) = -1.f;
+  OcclusionFilling::fill(d);
+  EXPECT_EQ(d.at<float>(2, 2), 1.f);
+  d.at<float>(2, 2) = -1.f;
+  d.at<float>(2, 3) = -1.f;  // the walk to the right passes it and finds the 5 beyond: 7 ones, 9 fives
+  OcclusionFilling::fill(d);
+  EXPECT_EQ(d.at<float>(2, 2), 5.f);
+  EXPECT_EQ(d.at<float>(2, 3), 1.f);  // 7 ones, 7 fives (two knight's moves leave the image): the tie's lower
   cv::Mat wrong(2, 2, CV_16S);
   EXPECT_THROW(OcclusionFilling::fill(wrong), std::invalid_argument);
 }

@@ -93,6 +93,45 @@ int main(int argc, char** argv)
   size_t keypoints = 0;
   const double keypoints_ms = medianMs(repeats, [&] { keypoints = pipeline.process(image).keypoints.size(); });
 
+  // Issue 21 item 1, a V1 front end shared by stereo and v1_cells, priced on this image: separately, BioBin
+  // filters the left image's finest level for odd cells only (lambda 4, full resolution, two orientations per
+  // inverse DFT) and v1_cells computes lambda {4, 8, 16} on decimated grids; one front end serving both needs
+  // lambda 4 with both phases at full resolution (v1_cells' lambda 4 grid is every second pixel of it) plus
+  // lambda {8, 16}. Coarser BioBin levels filter resized images, which no v1_cells scale equals.
+  GaborParameters stereo_odd;
+  stereo_odd.wavelengths = {4.0};
+  stereo_odd.min_grid_wavelength = 0.0;
+  GaborParameters coarse = gabor;
+  coarse.wavelengths = {8.0, 16.0};
+  SimpleCellBank stereo_bank(stereo_odd), shared_fine(stereo_odd), shared_coarse(coarse), v1_bank(gabor);
+  const double separate_ms = medianMs(repeats, [&] {
+    const auto odd = stereo_bank.computeOddPairs(gray);
+    const auto v1 = v1_bank.compute(gray);
+  });
+  std::vector<ScaleResponses> fine;
+  const double shared_ms = medianMs(repeats, [&] {
+    fine = shared_fine.compute(gray);
+    const auto rest = shared_coarse.compute(gray);
+  });
+  // The shared lambda 4 responses sampled every second pixel are v1_cells' lambda 4 grid.
+  double shared_err = 0.0;
+  {
+    const ScaleResponses& v1_fine = ours.front();
+    for (size_t o = 0; o < v1_fine.even.size(); ++o)
+      for (const auto& [full, grid] :
+           {std::pair(fine.front().even[o], v1_fine.even[o]), std::pair(fine.front().odd[o], v1_fine.odd[o])})
+      {
+        cv::Mat sampled(grid.size(), CV_32F);
+        for (int y = 0; y < grid.rows; ++y)
+          for (int x = 0; x < grid.cols; ++x)
+            sampled.at<float>(y, x) = full.at<float>(std::min(full.rows - 1, y * v1_fine.decimation),
+                                                     std::min(full.cols - 1, x * v1_fine.decimation));
+        double peak = 0;
+        cv::minMaxLoc(cv::abs(grid), nullptr, &peak);
+        shared_err = std::max(shared_err, cv::norm(sampled, grid, cv::NORM_INF) / std::max(peak, 1e-12));
+      }
+  }
+
   nlohmann::ordered_json figures;
   figures["command"] = "rosrun biovision_v1 v1_bench --threads " + std::to_string(threads) + " --json FILE";
   figures["image"] = image_path.substr(image_path.find_last_of('/') + 1);
@@ -107,6 +146,10 @@ int main(int argc, char** argv)
   figures["keypoints_ms"] = keypoints_ms;
   figures["keypoints"] = keypoints;
   figures["max_rel_err"] = max_rel_err;
+  figures["front_end_separate_ms"] = separate_ms;
+  figures["front_end_shared_ms"] = shared_ms;
+  figures["front_end_shared_vs_separate"] = separate_ms > 0 ? shared_ms / separate_ms : 0.0;
+  figures["front_end_shared_max_rel_err"] = shared_err;
   std::cout << figures.dump(2) << "\n";
   if (!options.writeJson(json_path, figures))
     return 1;

@@ -20,7 +20,8 @@ namespace biovision_stereo
 /// behind the upper median on the train scenes; with it the synthetic occluded band of the gtest got the
 /// foreground at the fattened edge). A pixel with no valid pixel along any direction stays invalid.
 /// O(16 width height) time whatever the gaps: a direction's nearest valid value is carried from pixel to
-/// pixel along it.
+/// pixel along it. Memory: 4 bytes per pixel plus ~72 per invalid pixel (the 16 directions' values); an
+/// all-invalid 4000 x 3000 map peaked at 1.1 GB, a 2 Mpx one (the node's max_input_pixels) needs ~150 MB.
 class OcclusionFilling
 {
 public:

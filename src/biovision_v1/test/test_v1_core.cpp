@@ -75,16 +75,17 @@ TEST(GaborKernel, EvenIsDcFreeOddIsAntisymmetric)
 
 TEST(GaborParameters, RejectsBadValues)
 {
-  GaborParameters p;
+  const GaborParameters good;
+  EXPECT_NO_THROW(good.validate());
+  GaborParameters p = good;
   p.orientations = 3;
   EXPECT_THROW(p.validate(), std::invalid_argument);
-  p = GaborParameters();
+  p = good;
   p.wavelengths = {8, 4};
   EXPECT_THROW(p.validate(), std::invalid_argument);
-  p = GaborParameters();
-  p.wavelengths = {};
+  p = good;
+  p.wavelengths.clear();
   EXPECT_THROW(p.validate(), std::invalid_argument);
-  EXPECT_NO_THROW(GaborParameters().validate());
 }
 
 // FourierTransform against cv::dft (the reference it replaces), relative to the spectrum's peak.

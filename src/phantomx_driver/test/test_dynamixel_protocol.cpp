@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include "phantomx_driver/ax12_joint.hpp"
 #include "phantomx_driver/dynamixel_packet.hpp"
@@ -49,7 +51,7 @@ TEST(DynamixelPacketParser, TakesStatusPacketsAndRejectsEveryCorruptedByte)
     Bytes bad = status;
     bad[i] ^= 0x04;
     Bytes stream = bad;
-    stream.insert(stream.end(), status.begin(), status.end());
+    std::copy(status.begin(), status.end(), std::back_inserter(stream));  // insert(): GCC 12 false -Warray-bounds
     DynamixelPacketParser parser;
     const auto got = parser.feed(stream);
     ASSERT_EQ(got.size(), 1u) << "byte " << i;
@@ -60,7 +62,7 @@ TEST(DynamixelPacketParser, TakesStatusPacketsAndRejectsEveryCorruptedByte)
   }
   DynamixelPacketParser parser;
   Bytes stream{0xFF, 0xFF, 0xFF};  // a run of 0xFF before the header
-  stream.insert(stream.end(), status.begin() + 2, status.end());
+  std::copy(status.begin() + 2, status.end(), std::back_inserter(stream));
   EXPECT_EQ(parser.feed(stream).size(), 1u);
 }
 

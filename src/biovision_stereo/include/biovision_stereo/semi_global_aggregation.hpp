@@ -39,8 +39,10 @@ public:
 
   static int stride(int disparities) { return (disparities + 1 + 15) / 16 * 16; }
   /// The paths this CPU runs, slowest first (kGeneric always). No AVX-512 path: a 32-lane step measured
-  /// 5-8% slower than AVX2 on an AVX-512 EPYC (stage_floor sgm_ms, 2026-12-05): the sweep is bound by its
-  /// step-to-step dependency and memory, not by lanes.
+  /// 5-8% slower than AVX2 on an AVX-512 EPYC (stage_floor sgm_ms, 2026-12-05); on an Intel Xeon a
+  /// 32-lane version of the fused per-pixel step (the pixel's last vector masked) took the aggregation
+  /// alone from 6.9 / 6.8 to 6.0 / 5.6 ms but left BioBin's whole pair unchanged (71.4 / 71.3 / 71.8 ->
+  /// 71.3 / 71.4 / 72.2 ms, 2026-12-06): the two sweeps run side by side, bound by memory, not by lanes.
   static std::vector<Simd> availableSimds();
   /// The fastest path this CPU runs (AVX2 when present).
   static Simd bestSimd();

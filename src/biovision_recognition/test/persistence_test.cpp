@@ -26,6 +26,7 @@
 
 #include <biovision_msgs/LearnObject.h>
 #include <biovision_msgs/ListObjects.h>
+#include <biovision_ros_common/async_service_client.hpp>
 #include <biovision_ros_common/rostest_helpers.hpp>
 #include <cv_bridge/cv_bridge.h>
 #include <diagnostic_msgs/DiagnosticArray.h>
@@ -66,6 +67,27 @@ std::vector<std::string> filesStartingWith(const std::string& dir, const std::st
       out.push_back(e.path().string());
   std::sort(out.begin(), out.end());
   return out;
+}
+
+/// A service call that gives up after `timeout` wall seconds (false), through AsyncServiceClient: roscpp's
+/// own call has no time-out, and in one CI run (2026-12-06) this test hung for good in its 11th kill
+/// round, most likely in a call racing a kill -9.
+template <class Service>
+bool callWithin(const std::string& name, Service& srv, double timeout = 10.0)
+{
+  biovision_ros_common::AsyncServiceClient<Service> client(ros::NodeHandle(), name, timeout);
+  if (!client.start(srv.request))
+    return false;
+  for (;;)
+  {
+    if (auto result = client.take())
+    {
+      if (result->answered)
+        srv.response = result->response;
+      return result->answered;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
 }
 
 /// The recognition node in its own process, its output in a log file.
@@ -175,8 +197,7 @@ protected:
     for (int i = 0; i < 300 && node->running(); ++i)
     {
       biovision_msgs::ListObjects list;
-      if (ros::service::exists("recognition/list_objects", false) &&
-          ros::service::call("recognition/list_objects", list))
+      if (ros::service::exists("recognition/list_objects", false) && callWithin("recognition/list_objects", list))
         return node;
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
@@ -201,7 +222,7 @@ protected:
     for (int i = 0; i < 100; ++i)
     {
       auto req = learnRequest(label);
-      if (ros::service::call("recognition/learn_object", req) && req.response.success)
+      if (callWithin("recognition/learn_object", req) && req.response.success)
         return true;
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
@@ -211,7 +232,7 @@ protected:
   static std::set<std::string> listed()
   {
     biovision_msgs::ListObjects list;
-    EXPECT_TRUE(ros::service::call("recognition/list_objects", list));
+    EXPECT_TRUE(callWithin("recognition/list_objects", list));
     return {list.response.labels.begin(), list.response.labels.end()};
   }
 
@@ -296,7 +317,7 @@ TEST_F(Persistence, KillDuringSavesLosesNothingAcknowledgedAndLeavesNoDebris)
       {
         const std::string label = "object_" + std::to_string(counter++);
         auto req = learnRequest(label);
-        if (ros::service::call("recognition/learn_object", req) && req.response.success)
+        if (callWithin("recognition/learn_object", req) && req.response.success)
         {
           std::lock_guard<std::mutex> lock(ack_mutex);
           acknowledged.insert(label);

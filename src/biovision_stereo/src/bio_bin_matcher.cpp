@@ -12,6 +12,7 @@
 #include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "biovision_common/area_downsampling.hpp"
 #include "biovision_stereo/disparity_dog.hpp"
 #include "biovision_stereo/hamming.hpp"
 #include "biovision_stereo/iterative_spatial_filter.hpp"
@@ -211,6 +212,7 @@ BioBinMatcher::BioBinMatcher(const BioBinParameters& parameters)
     odd_banks_.push_back(std::make_unique<biovision_v1::SimpleCellBank>(full));
     spare_.emplace_back();
     codes_.emplace_back();
+    downsampling_.emplace_back();
     barrier_banks_.push_back(std::make_unique<biovision_v1::SimpleCellBank>(gabor));
   }
 }
@@ -492,6 +494,7 @@ DisparityMap BioBinMatcher::compute(const cv::Mat& left_in, const cv::Mat& right
   {
     const double sf = parameters_.scaleFactor(s);
     const cv::Size size = levelSize(left.size(), s);
+    auto t = Clock::now();
     cv::Mat l, r;
     if (size == left.size())
     {
@@ -500,9 +503,14 @@ DisparityMap BioBinMatcher::compute(const cv::Mat& left_in, const cv::Mat& right
     }
     else
     {
-      cv::resize(left, l, size, 0, 0, cv::INTER_AREA);
-      cv::resize(right, r, size, 0, 0, cv::INTER_AREA);
+      // Area averaging as INTER_AREA, but 5x faster than OpenCV's single-threaded non-integer path.
+      auto& down = downsampling_[s];
+      if (!down || down->input() != left.size() || down->output() != size)
+        down = std::make_unique<biovision_common::AreaDownsampling>(left.size(), size);
+      down->apply(left, l);
+      down->apply(right, r);
     }
+    times_.prepare += msSince(t);
     const int disparities = static_cast<int>(std::ceil(parameters_.max_disparity / sf)) + 1;
     // Line/edge barriers only where a step uses them (the finest level's semi-global aggregation does
     // only when it lowers P2 there): at the finest level that saves the quadrature bank's compute.
@@ -512,7 +520,7 @@ DisparityMap BioBinMatcher::compute(const cv::Mat& left_in, const cv::Mat& right
     cv::Mat barriers;
     float max_cost = 0.f;
     CostVolume costs = levelCosts(s, l, r, disparities, need_barriers ? &barriers : nullptr, &max_cost);
-    auto t = Clock::now();
+    t = Clock::now();
     const bool fused = previous.disparities() > 0;
     float lowest = 0.f;  // the fused costs' min: the aggregation's 16-bit offset
     if (fused)

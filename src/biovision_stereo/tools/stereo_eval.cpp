@@ -370,8 +370,10 @@ int main(int argc, char** argv)
       "biobin_filled = the defaults plus occlusion filling and a 3x3 median (chosen on the train scenes; off in the "
       "robot's defaults: on its tabletop bag they turn invalid pixels into wrong ones), "
       "biobin_thesis = the thesis' iterative spatial filter; *_fast = one scale (lambda 16, quarter size). "
-      "stage_ms_* = BioBin's stage times [ms] (lastTimes() of the last timed run, mean over scenes; costs_dog = "
-      "the costs and the DoG along disparity, computed together one image row at a time). split: "
+      "stage_ms_* = BioBin's stage times [ms] (lastTimes() of the last timed run, mean over scenes; prepare = each "
+      "level's "
+      "area averaging and colour conversions; costs_dog = the costs and the DoG along disparity, computed together one "
+      "image row at a time). split: "
       "parameters were tuned on the train scenes only; with split report, none of the scenes was tuned on. "
       "Ratios: ours / peer, same run (time < 1 = faster, bad1.0 < 1 = fewer errors). Data: Middlebury "
       "(Scharstein & Szeliski 2002/2003, Scharstein & Pal 2007, Hirschmueller & Scharstein 2007).";

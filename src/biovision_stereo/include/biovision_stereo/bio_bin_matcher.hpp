@@ -14,6 +14,11 @@
 #include "biovision_stereo/iterative_spatial_filter.hpp"
 #include "biovision_stereo/pixel_descriptor.hpp"
 
+namespace biovision_common
+{
+class AreaDownsampling;
+}
+
 namespace biovision_v1
 {
 class SimpleCellBank;
@@ -55,7 +60,8 @@ public:
   /// Wall time of the stages of the last compute() [ms], summed over levels.
   struct StageTimes
   {
-    // costs: steps (b), (d) and (e), the DoG included (they run fused, one image row at a time).
+    // prepare: each level's area averaging of the input and colour conversions; costs: steps (b), (d) and
+    // (e), the DoG included (they run fused, one image row at a time).
     double prepare = 0, cells = 0, costs = 0, fusion = 0, spatial = 0, wta = 0, total = 0;
   };
   const StageTimes& lastTimes() const { return times_; }
@@ -95,5 +101,7 @@ private:
   IterativeSpatialFilter spatial_filter_;  // the coarse levels' filter, its scratch reused between frames
   std::vector<CostVolume> spare_;          // each level's cost volume of the last frame, memory reused
   std::vector<std::array<PixelDescriptorImage, 2>> codes_;  // each level's left and right descriptors, reused
+  // Each coarser level's area averaging of the input (its weights built once per input size).
+  std::vector<std::unique_ptr<biovision_common::AreaDownsampling>> downsampling_;
 };
 }  // namespace biovision_stereo

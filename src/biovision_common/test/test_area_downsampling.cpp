@@ -76,6 +76,19 @@ TEST(AreaDownsampling, EqualsOpenCvInterAreaWithinOneRounding)
     }
 }
 
+TEST(AreaDownsampling, HalvingAnEightBitImageIsOpenCvsExactly)
+{
+  std::mt19937 rng(9);
+  for (const int type : {CV_8UC1, CV_8UC3})
+  {
+    const cv::Mat src = randomImage(cv::Size(320, 240), type, rng);
+    cv::Mat ours, theirs;
+    AreaDownsampling(src.size(), cv::Size(160, 120)).apply(src, ours);
+    cv::resize(src, theirs, cv::Size(160, 120), 0, 0, cv::INTER_AREA);
+    EXPECT_EQ(cv::norm(ours, theirs, cv::NORM_INF), 0.0);
+  }
+}
+
 TEST(AreaDownsampling, AConstantImageStaysConstant)
 {
   const cv::Mat src(375, 450, CV_8UC3, cv::Scalar(7, 128, 255));

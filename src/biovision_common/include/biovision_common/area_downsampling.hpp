@@ -13,6 +13,8 @@ namespace biovision_common
 /// Measured on a 450x375 BGR image (Middlebury Cones): to 113x94 0.50 ms -> 0.14 ms (1 thread), 0.10 ms
 /// (2 threads); to 225x188 0.62 -> 0.25 / 0.16 ms. Same weights as INTER_AREA, another summation order,
 /// so a rounded 8-bit value can differ by 1 (0-1 of 31k values at 1/4, 21 of 127k at 1/2 there).
+/// An 8-bit image of exactly twice the output size goes to OpenCV's own 2x2 path (SIMD: 0.022 ms for
+/// 320x240 BGR, 2.5x this one's).
 ///
 /// Built once per (input size, output size) pair; apply() is const and may run concurrently.
 class AreaDownsampling

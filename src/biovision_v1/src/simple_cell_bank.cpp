@@ -239,7 +239,7 @@ std::vector<std::vector<cv::Mat>> SimpleCellBank::computeOddPairs(const cv::Mat&
       // faults); the returned view shares it, so it is written again only once the caller has let go.
       cv::Mat& product = pair_products_[job];
       FourierTransform::releaseIfShared(product);
-      cv::mulSpectrums(image_spectra[p.spectrum_source], p.odd_pair_spectra[pair], product, 0);
+      FourierTransform::multiplySpectra(image_spectra[p.spectrum_source], p.odd_pair_spectra[pair], product);
       FourierTransform::inverseUnscaled(product, product);  // the pair spectra carry the 1/N
       out[s][pair] = product(cv::Rect(p.padding, p.padding, gray.cols, gray.rows));
     }

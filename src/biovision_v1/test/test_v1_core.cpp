@@ -137,6 +137,33 @@ TEST(FourierTransform, InPlaceAndOnARegionOfInterest)
   EXPECT_LT(cv::norm(x / double(x.total()), original, cv::NORM_INF), 1e-5);
 }
 
+TEST(FourierTransform, MultipliesSpectraExactlyAsOpenCvsMulSpectrums)
+{
+  cv::RNG rng(17);
+  for (const cv::Size size : {cv::Size(1, 1), cv::Size(7, 3), cv::Size(150, 128), cv::Size(61, 47)})
+  {
+    cv::Mat a(size, CV_32FC2), b(size, CV_32FC2), ref, ours;
+    rng.fill(a, cv::RNG::UNIFORM, -1e3, 1e3);
+    rng.fill(b, cv::RNG::UNIFORM, -1.0, 1.0);
+    cv::mulSpectrums(a, b, ref, 0);
+    FourierTransform::multiplySpectra(a, b, ours);
+    EXPECT_EQ(cv::norm(ours, ref, cv::NORM_INF), 0.0) << size;  // bit for bit: the same roundings
+    // In place over either operand, and on a region of interest (not continuous).
+    cv::Mat a2 = a.clone();
+    FourierTransform::multiplySpectra(a2, b, a2);
+    EXPECT_EQ(cv::norm(a2, ref, cv::NORM_INF), 0.0);
+  }
+  cv::Mat big(40, 50, CV_32FC2), ref, ours;
+  rng.fill(big, cv::RNG::UNIFORM, -1.0, 1.0);
+  const cv::Mat roi = big(cv::Rect(3, 2, 31, 17));
+  cv::mulSpectrums(roi, roi, ref, 0);
+  FourierTransform::multiplySpectra(roi, roi, ours);
+  EXPECT_EQ(cv::norm(ours, ref, cv::NORM_INF), 0.0);
+  cv::Mat wrong(17, 31, CV_32FC1);
+  EXPECT_THROW(FourierTransform::multiplySpectra(roi, wrong, ours), std::invalid_argument);
+  EXPECT_THROW(FourierTransform::multiplySpectra(roi, big, ours), std::invalid_argument);
+}
+
 TEST(FourierTransform, ReusesAnUnsharedSpectrumAndNeverWritesIntoAViewHeldElsewhere)
 {
   cv::Mat image(40, 50, CV_32FC1), other(40, 50, CV_32FC1);

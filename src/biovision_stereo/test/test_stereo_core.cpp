@@ -22,6 +22,7 @@
 #include "biovision_stereo/iterative_spatial_filter.hpp"
 #include "biovision_stereo/occlusion_filling.hpp"
 #include "biovision_common/eval/middlebury_dataset.hpp"
+#include "biovision_common/cpu_features.hpp"
 #include "biovision_stereo/pixel_descriptor.hpp"
 #include "biovision_stereo/semi_global_aggregation.hpp"
 #include "biovision_v1/fourier_transform.hpp"
@@ -176,6 +177,42 @@ TEST(PixelDescriptor, RollingEqualsFromScratchEverywhere)
           ASSERT_TRUE(reused.at(x, y) == codes.at(x, y))
               << "reused image at " << x << "," << y << " of " << size << (ties ? " with ties" : "");
         }
+    }
+}
+
+TEST(PixelDescriptor, PairComparisonsAreTheSameOnEveryPath)
+{
+  // Widths around the 8-pixel step (the last pixel read is x + 8), ties and NaN (compare false).
+  std::mt19937 rng(4);
+  std::uniform_int_distribution<int> level(-3, 3);
+  const bool avx2 = biovision_common::CpuFeatures::host().avx2;
+  for (const int w : {1, 2, 8, 9, 10, 16, 17, 25, 113, 450})
+    for (int trial = 0; trial < 4; ++trial)
+    {
+      std::vector<float> row(2 * w);
+      for (float& v : row)
+        v = static_cast<float>(level(rng));  // few levels: many ties
+      if (trial == 3 && w > 3)
+        row[3] = row[2 * w - 2] = std::numeric_limits<float>::quiet_NaN();
+      std::vector<std::uint8_t> ref_a(w, 7), ref_b(w, 7);
+      for (int x = 0; x + 1 < w; ++x)  // the definition, written out
+      {
+        ref_a[w - 1 - x] = row[2 * x] > row[2 * x + 2] ? 0xFF : 0;
+        ref_b[w - 1 - x] = row[2 * x + 1] > row[2 * x + 3] ? 0xFF : 0;
+      }
+      for (const bool simd : {false, true})
+      {
+        if (simd && !avx2)
+        {
+          EXPECT_THROW(PixelDescriptorImage::comparePairRow(row.data(), w, ref_a.data(), ref_b.data(), true),
+                       std::invalid_argument);
+          continue;
+        }
+        std::vector<std::uint8_t> a(w, 7), b(w, 7);
+        PixelDescriptorImage::comparePairRow(row.data(), w, a.data(), b.data(), simd);
+        EXPECT_EQ(a, ref_a) << "width " << w << (simd ? " avx2" : " generic");
+        EXPECT_EQ(b, ref_b) << "width " << w << (simd ? " avx2" : " generic");
+      }
     }
 }
 

@@ -39,6 +39,12 @@ public:
   /// The same descriptor computed from scratch at one pixel (the reference for tests); odd as compute().
   static PixelDescriptor fromScratch(const std::vector<cv::Mat>& odd, int x, int y);
 
+  /// compute()'s comparison step for one row of an orientation pair (CV_32FC2 row, orientations a and b
+  /// interleaved), public for its tests: out_a[w - 1 - x] = R_a(x) > R_a(x + 1) ? 0xFF : 0 for
+  /// 0 <= x < width - 1, likewise out_b; out_a[0], out_b[0] untouched. avx2 false: the scalar fallback;
+  /// true: 8 pixels per step (throws std::invalid_argument when this CPU lacks AVX2). Both give the same bytes.
+  static void comparePairRow(const float* pair_row, int width, std::uint8_t* out_a, std::uint8_t* out_b, bool avx2);
+
   int width() const { return width_; }
   int height() const { return height_; }
   const PixelDescriptor& at(int x, int y) const { return data_[size_t(y) * width_ + x]; }

@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <immintrin.h>
+
 #include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -194,7 +196,56 @@ __attribute__((flatten)) float fuseSliceGeneric(cv::Mat& c, const cv::Mat& up, f
 {
   return fuseSlice(c, up, level);
 }
+
+// Winner-take-all update of one slice row c (disparity k, valid from x = k) on both views: left pixel
+// x keeps the lowest cost so far (best_cost, best), right pixel x - k likewise (best_right, right_k).
+// Strict <: the lowest disparity wins a tie; a NaN cost never wins. i = x - k.
+void updateWinnersGeneric(const float* c, int n, int k, float* best_cost, int* best, float* best_right, int* right_k)
+{
+  for (int i = 0; i < n; ++i)
+  {
+    if (c[i] < best_cost[i])
+    {
+      best_cost[i] = c[i];
+      best[i] = k;
+    }
+    if (c[i] < best_right[i])
+    {
+      best_right[i] = c[i];
+      right_k[i] = k;
+    }
+  }
+}
+
+// The same 8 pixels per step with blends (GCC keeps the scalar version's branches: 6% of the fast mode).
+__attribute__((target("avx2"))) void updateWinnersAvx2(const float* c, int n, int k, float* best_cost, int* best,
+                                                       float* best_right, int* right_k)
+{
+  const __m256i kk = _mm256_set1_epi32(k);
+  int i = 0;
+  for (; i + 8 <= n; i += 8)
+  {
+    const __m256 v = _mm256_loadu_ps(c + i), bl = _mm256_loadu_ps(best_cost + i), br = _mm256_loadu_ps(best_right + i);
+    const __m256 left = _mm256_cmp_ps(v, bl, _CMP_LT_OQ), right = _mm256_cmp_ps(v, br, _CMP_LT_OQ);
+    _mm256_storeu_ps(best_cost + i, _mm256_blendv_ps(bl, v, left));
+    _mm256_storeu_ps(best_right + i, _mm256_blendv_ps(br, v, right));
+    const __m256i kl = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(best + i));
+    const __m256i kr = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(right_k + i));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(best + i), _mm256_blendv_epi8(kl, kk, _mm256_castps_si256(left)));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(right_k + i),
+                        _mm256_blendv_epi8(kr, kk, _mm256_castps_si256(right)));
+  }
+  updateWinnersGeneric(c + i, n - i, k, best_cost + i, best + i, best_right + i, right_k + i);
+}
 }  // namespace
+
+void BioBinMatcher::updateWinners(const float* cost, int n, int k, float* best_cost, int* best, float* best_right,
+                                  int* right_k, CostSimd simd)
+{
+  requireCostSimd(simd);
+  (simd == CostSimd::kGeneric ? updateWinnersGeneric : updateWinnersAvx2)(cost, n, k, best_cost, best, best_right,
+                                                                          right_k);
+}
 
 BioBinMatcher::BioBinMatcher(const BioBinParameters& parameters)
   : parameters_(parameters),
@@ -351,6 +402,7 @@ DisparityMap BioBinMatcher::winnerTakeAll(const CostVolume& costs, cv::Size inpu
   const cv::Size size = costs.size();
   const int w = size.width, h = size.height, nd = costs.disparities();
   cv::Mat left_d(size, CV_32F), right_k(size, CV_32S);
+  const CostSimd simd = cost_simd_;
   cv::parallel_for_(cv::Range(0, h), [&](const cv::Range& rows) {
     std::vector<float> best_cost(w), best_right(w);
     std::vector<int> best(w);
@@ -363,24 +415,11 @@ DisparityMap BioBinMatcher::winnerTakeAll(const CostVolume& costs, cv::Size inpu
       std::fill(rk, rk + w, -1);
       // Disparity outer, pixels inner: each slice row is read once, contiguously (the pixel-outer
       // order strode across all slices per pixel). Same visiting order per pixel, so the same ties win.
+      // A disparity must stay inside the right image: k <= x. Right view: the right pixel x - k sees left
+      // pixel x at disparity k.
       for (int k = 0; k < nd; ++k)
-      {
-        const float* c = costs.slice(k).ptr<float>(y);
-        for (int x = k; x < w; ++x)  // a disparity must stay inside the right image: k <= x
-        {
-          if (c[x] < best_cost[x])
-          {
-            best_cost[x] = c[x];
-            best[x] = k;
-          }
-          // Right view: the right pixel x - k sees left pixel x at disparity k.
-          if (c[x] < best_right[x - k])
-          {
-            best_right[x - k] = c[x];
-            rk[x - k] = k;
-          }
-        }
-      }
+        (simd == CostSimd::kGeneric ? updateWinnersGeneric : updateWinnersAvx2)(
+            costs.slice(k).ptr<float>(y) + k, w - k, k, best_cost.data() + k, best.data() + k, best_right.data(), rk);
       float* ld = left_d.ptr<float>(y);
       for (int x = 0; x < w; ++x)
       {

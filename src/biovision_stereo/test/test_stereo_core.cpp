@@ -829,6 +829,43 @@ TEST(CostSimd, EveryPathGivesTheGenericBitsForBit)
   }
 }
 
+TEST(BioBinMatcher, WinnerUpdatesAreTheSameOnEveryPathWithTiesAndNaN)
+{
+  std::mt19937 rng(8);
+  std::uniform_int_distribution<int> level(0, 3);  // four cost levels: ties everywhere
+  for (const int n : {1, 7, 8, 9, 31, 150})
+  {
+    std::vector<std::vector<float>> slices(6, std::vector<float>(n));
+    for (auto& slice : slices)
+      for (float& v : slice)
+        v = static_cast<float>(level(rng));
+    slices[2][0] = std::numeric_limits<float>::quiet_NaN();
+    std::vector<float> ref_cost(n, HUGE_VALF), ref_right(n, HUGE_VALF);
+    std::vector<int> ref_best(n, 0), ref_rk(n, -1);
+    for (size_t k = 0; k < slices.size(); ++k)  // the definition: strict <, first (lowest) k wins
+      for (int i = 0; i < n; ++i)
+      {
+        const float v = slices[k][i];
+        if (v < ref_cost[i])
+          ref_cost[i] = v, ref_best[i] = static_cast<int>(k);
+        if (v < ref_right[i])
+          ref_right[i] = v, ref_rk[i] = static_cast<int>(k);
+      }
+    for (const CostSimd simd : availableCostSimds())
+    {
+      std::vector<float> cost(n, HUGE_VALF), right(n, HUGE_VALF);
+      std::vector<int> best(n, 0), rk(n, -1);
+      for (size_t k = 0; k < slices.size(); ++k)
+        BioBinMatcher::updateWinners(slices[k].data(), n, static_cast<int>(k), cost.data(), best.data(), right.data(),
+                                     rk.data(), simd);
+      EXPECT_EQ(best, ref_best) << n << " " << costSimdName(simd);
+      EXPECT_EQ(rk, ref_rk) << n << " " << costSimdName(simd);
+      EXPECT_EQ(cost, ref_cost) << n << " " << costSimdName(simd);
+      EXPECT_EQ(right, ref_right) << n << " " << costSimdName(simd);
+    }
+  }
+}
+
 // Brute-force reference of OcclusionFilling: per invalid pixel, walk each of the 16 directions to the first valid
 // pixel and take the lower median of what was found.
 static cv::Mat referenceFill(const cv::Mat& in)

@@ -69,6 +69,14 @@ public:
   /// Level sizes the matcher uses for an input size (finest first in parameters order).
   cv::Size levelSize(cv::Size input, size_t level) const;
 
+  /// The iterative aggregation's winner-take-all step for one slice row, public for its tests: for i < n,
+  /// cost[i] (disparity k at left pixel x = k + i) replaces best_cost[i] / best[i] when lower, and
+  /// best_right[i] / right_k[i] (right pixel i) when lower; strict <, so the lowest disparity wins a tie and
+  /// NaN never wins. simd: kGeneric or a vector path (kAvx2 and kAvx512 run 8 lanes of AVX2); all give the
+  /// same result. Throws std::invalid_argument when this CPU lacks simd.
+  static void updateWinners(const float* cost, int n, int k, float* best_cost, int* best, float* best_right,
+                            int* right_k, CostSimd simd);
+
   /// Steps (b)-(e) of one level: colour-masked Hamming costs after the DoG along disparity.
   /// left/right: 8-bit BGR at the level's size. barriers: CV_8U, non-zero on left line/edge events.
   /// max_cost: the returned volume's max() (found while the rows are written: no pass of its own).

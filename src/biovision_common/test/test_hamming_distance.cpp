@@ -80,7 +80,8 @@ TEST(HammingDistance, EveryAvailablePairwisePathEqualsTheScalarReference)
 {
   std::mt19937_64 rng(5);
   for (int bits : {64, 128, 256, 512})
-    for (size_t count : {size_t(0), size_t(1), size_t(7), size_t(8), size_t(9), size_t(16), size_t(45), size_t(451)})
+    for (size_t count : {size_t(0), size_t(1), size_t(2), size_t(3), size_t(4), size_t(5), size_t(6), size_t(7),
+                         size_t(8), size_t(9), size_t(13), size_t(16), size_t(45), size_t(451)})
     {
       const int words = bits / 64;
       std::vector<uint64_t> a = randomWords(words * count, rng), b = randomWords(words * count, rng);

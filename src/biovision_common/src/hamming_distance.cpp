@@ -5,6 +5,7 @@
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <immintrin.h>
 
+#include <cstring>
 #include <stdexcept>
 #include <type_traits>
 
@@ -258,12 +259,25 @@ template <class T>
 __attribute__((target("avx2,popcnt"))) void avx2Pairwise(const uint64_t* a, const uint64_t* b, size_t count, int words,
                                                          T* out)
 {
+  if (words != 4)
+  {
+    popcntPairwise(a, b, count, words, out);
+    return;
+  }
   size_t i = 0;
-  if (words == 4)
-    for (; i + 8 <= count; i += 8)
-      storeCounts(eight256Pairwise(a + 4 * i, b + 4 * i), out + i);
-  if (i < count)
-    popcntPairwise(a + i * words, b + i * words, count - i, words, out + i);
+  for (; i + 8 <= count; i += 8)
+    storeCounts(eight256Pairwise(a + 4 * i, b + 4 * i), out + i);
+  if (i == count)
+    return;
+  // The last 1..7 pairs copied into zeroed blocks of 8 (a zero xor counts 0) and run through the same
+  // kernel: on short rows the scalar tail cost as much as the vector part.
+  alignas(32) uint64_t ta[32] = {}, tb[32] = {};
+  std::memcpy(ta, a + 4 * i, 32 * (count - i));
+  std::memcpy(tb, b + 4 * i, 32 * (count - i));
+  alignas(32) int32_t counts[8];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(counts), eight256Pairwise(ta, tb));
+  for (size_t j = 0; i + j < count; ++j)
+    out[i + j] = static_cast<T>(counts[j]);
 }
 
 // Counts of 8 consecutive pairs of 256-bit codes as 64-bit lanes, in order; words k * 8 .. k * 8 + 7 of the

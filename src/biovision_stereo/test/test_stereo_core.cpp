@@ -180,39 +180,44 @@ TEST(PixelDescriptor, RollingEqualsFromScratchEverywhere)
     }
 }
 
-TEST(PixelDescriptor, PairComparisonsAreTheSameOnEveryPath)
+TEST(PixelDescriptor, ComparisonRowsAreTheSameOnEveryPath)
 {
-  // Widths around the 8-pixel step (the last pixel read is x + 8), ties and NaN (compare false).
+  // Widths around the 8-pixel step (the last pixel read is x + 8), ties and NaN (compare false), as 8 maps
+  // and as 4 interleaved pairs.
   std::mt19937 rng(4);
   std::uniform_int_distribution<int> level(-3, 3);
   const bool avx2 = biovision_common::CpuFeatures::host().avx2;
   for (const int w : {1, 2, 8, 9, 10, 16, 17, 25, 113, 450})
     for (int trial = 0; trial < 4; ++trial)
     {
-      std::vector<float> row(2 * w);
-      for (float& v : row)
-        v = static_cast<float>(level(rng));  // few levels: many ties
+      std::vector<cv::Mat> odd(8);
+      for (cv::Mat& m : odd)
+      {
+        m.create(2, w, CV_32F);
+        m.forEach<float>([&](float& v, const int*) { v = static_cast<float>(level(rng)); });  // few levels: ties
+      }
       if (trial == 3 && w > 3)
-        row[3] = row[2 * w - 2] = std::numeric_limits<float>::quiet_NaN();
-      std::vector<std::uint8_t> ref_a(w, 7), ref_b(w, 7);
+        odd[5].at<float>(1, 2) = odd[2].at<float>(1, w - 1) = std::numeric_limits<float>::quiet_NaN();
+      std::vector<cv::Mat> pairs(4);
+      for (int i = 0; i < 4; ++i)
+        cv::merge(std::vector<cv::Mat>{odd[2 * i], odd[2 * i + 1]}, pairs[i]);
+      std::vector<std::uint8_t> ref(w, 0);
       for (int x = 0; x + 1 < w; ++x)  // the definition, written out
-      {
-        ref_a[w - 1 - x] = row[2 * x] > row[2 * x + 2] ? 0xFF : 0;
-        ref_b[w - 1 - x] = row[2 * x + 1] > row[2 * x + 3] ? 0xFF : 0;
-      }
-      for (const bool simd : {false, true})
-      {
-        if (simd && !avx2)
+        for (int o = 0; o < 8; ++o)
+          ref[x] |= static_cast<std::uint8_t>((odd[o].at<float>(1, x) > odd[o].at<float>(1, x + 1)) << o);
+      for (const auto* input : {&odd, &pairs})
+        for (const bool simd : {false, true})
         {
-          EXPECT_THROW(PixelDescriptorImage::comparePairRow(row.data(), w, ref_a.data(), ref_b.data(), true),
-                       std::invalid_argument);
-          continue;
+          std::vector<std::uint8_t> got(w, 0xA5);
+          if (simd && !avx2)
+          {
+            EXPECT_THROW(PixelDescriptorImage::comparisonRow(*input, 1, got.data(), true), std::invalid_argument);
+            continue;
+          }
+          PixelDescriptorImage::comparisonRow(*input, 1, got.data(), simd);
+          EXPECT_EQ(got, ref) << "width " << w << (input == &pairs ? " pairs" : " maps")
+                              << (simd ? " avx2" : " generic");
         }
-        std::vector<std::uint8_t> a(w, 7), b(w, 7);
-        PixelDescriptorImage::comparePairRow(row.data(), w, a.data(), b.data(), simd);
-        EXPECT_EQ(a, ref_a) << "width " << w << (simd ? " avx2" : " generic");
-        EXPECT_EQ(b, ref_b) << "width " << w << (simd ? " avx2" : " generic");
-      }
     }
 }
 
@@ -226,12 +231,32 @@ TEST(PixelDescriptor, BitsFollowTheSamplingPattern)
   for (int x = 0; x < 40; ++x)
     odd[0].at<float>(2, x) = static_cast<float>(x);
   odd[0].at<float>(2, 20) = 100.f;  // R(20) > R(21): bit for position 20 on row 2
+  const auto byteOf = [](const PixelDescriptor& d, int b) {
+    return reinterpret_cast<const std::uint8_t*>(d.words.data())[b];
+  };
+  const auto ones = [&](const PixelDescriptor& d) {
+    int n = 0;
+    for (int b = 0; b < 32; ++b)
+      n += __builtin_popcount(byteOf(d, b));
+    return n;
+  };
+  // Row y: bytes 0..15 are positions x-8..x+7, so position 20 seen from x = 20 is byte 8, orientation 0 bit 0.
   const PixelDescriptor d = PixelDescriptorImage::fromScratch(odd, 20, 2);
-  // Row y segment: positions x-8..x+7, oldest highest: position 20 is index 8 -> bit 16 + (15 - 8).
-  EXPECT_EQ(d.words[0] & 0xFFFFFFFFull, 1ull << (16 + 7));
-  const PixelDescriptor above = PixelDescriptorImage::fromScratch(odd, 20, 3);  // row 2 is its y-1
-  // y-1 segment: positions x-4..x+3, position 20 is index 4 -> bit 8 + (7 - 4).
-  EXPECT_EQ(above.words[0] & 0xFFFFFFFFull, 1ull << (8 + 3));
+  EXPECT_EQ(byteOf(d, 8), 1);
+  EXPECT_EQ(ones(d), 1);
+  // Seen from x = 25 it is position i = -5: byte 3.
+  EXPECT_EQ(byteOf(PixelDescriptorImage::fromScratch(odd, 25, 2), 3), 1);
+  // Row y-1 (from row 3): bytes 16..23 are positions x-4..x+3, position 20 is byte 16 + 4.
+  const PixelDescriptor above = PixelDescriptorImage::fromScratch(odd, 20, 3);
+  EXPECT_EQ(byteOf(above, 20), 1);
+  EXPECT_EQ(ones(above), 1);
+  // Row y+1 (from row 1): bytes 24..31.
+  EXPECT_EQ(byteOf(PixelDescriptorImage::fromScratch(odd, 20, 1), 28), 1);
+  // Beyond the window: nothing.
+  EXPECT_EQ(ones(PixelDescriptorImage::fromScratch(odd, 29, 2)), 0);
+  // Orientation 5's drop is bit 5.
+  odd[5].at<float>(2, 10) = 50.f;
+  EXPECT_EQ(byteOf(PixelDescriptorImage::fromScratch(odd, 10, 2), 8), 1 << 5);
 }
 
 TEST(Hamming, EveryPathEqualsTheScalarReference)

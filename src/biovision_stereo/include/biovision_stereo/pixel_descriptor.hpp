@@ -10,11 +10,14 @@ namespace biovision_stereo
 {
 /// 256-bit BioBin pixel descriptor (thesis §4.4.3): for each of 8 orientations, odd simple-cell
 /// responses R^O compared with their right neighbour, bit = R(x+i) > R(x+i+1):
-///   row y:     i = -8..7 (16 bits, R at x-8..x+8)
-///   rows y-1, y+1: i = -4..3 (8 bits each, R at x-4..x+4)
-/// = 32 bits per orientation. Orientation o occupies bits [32(o%2), 32(o%2)+32) of word o/2; inside,
-/// row y is bits 16..31 (oldest comparison highest), row y-1 bits 8..15, row y+1 bits 0..7.
-/// Outside the image, responses are those of the nearest pixel (replicated border).
+///   row y:     i = -8..7 (16 comparisons, R at x-8..x+8)
+///   rows y-1, y+1: i = -4..3 (8 each, R at x-4..x+4)
+/// = 32 comparisons per orientation. Layout: one byte per sampled position holding its 8 orientations
+/// (bit o = orientation o): bytes 0..15 row y, i = -8..7; bytes 16..23 row y-1, i = -4..3; bytes 24..31
+/// row y+1, i = -4..3, in this order in memory (on x86: byte b is bits 8(b%8).. of word b/8). (Only Hamming distances are taken,
+/// which a fixed order of the bits does not change; this one makes a descriptor three copies of a row of
+/// comparison bytes.) Outside the image, responses are those of the nearest pixel (replicated border),
+/// so those comparisons are 0.
 struct PixelDescriptor
 {
   std::array<std::uint64_t, 4> words{};
@@ -28,10 +31,10 @@ public:
   PixelDescriptorImage() = default;
   PixelDescriptorImage(int width, int height) : width_(width), height_(height), data_(size_t(width) * height) {}
 
-  /// Rolling computation: each pixel's code is the previous one shifted by one with one new
-  /// comparison appended per segment (thesis §4.4.3). odd: 8 CV_32FC1 maps of equal size, or 4 CV_32FC2
-  /// maps with orientations 2i and 2i+1 in channels 0 and 1 (SimpleCellBank::computeOddPairs, no split);
-  /// throws std::invalid_argument otherwise.
+  /// odd: 8 CV_32FC1 maps of equal size, or 4 CV_32FC2 maps with orientations 2i and 2i+1 in channels 0
+  /// and 1 (SimpleCellBank::computeOddPairs, no split); throws std::invalid_argument otherwise. Each row's
+  /// comparisons are computed once (one byte per pixel, 8 orientations), then every descriptor is copied
+  /// together from three rows of them.
   static PixelDescriptorImage compute(const std::vector<cv::Mat>& odd);
   /// The same into `out`, reusing its memory: no allocation when `out` held an image of this size
   /// before (a fresh 450x375 image was 7 MB of page faults per call, a third of BioBin's cell stage).
@@ -39,11 +42,11 @@ public:
   /// The same descriptor computed from scratch at one pixel (the reference for tests); odd as compute().
   static PixelDescriptor fromScratch(const std::vector<cv::Mat>& odd, int x, int y);
 
-  /// compute()'s comparison step for one row of an orientation pair (CV_32FC2 row, orientations a and b
-  /// interleaved), public for its tests: out_a[w - 1 - x] = R_a(x) > R_a(x + 1) ? 0xFF : 0 for
-  /// 0 <= x < width - 1, likewise out_b; out_a[0], out_b[0] untouched. avx2 false: the scalar fallback;
-  /// true: 8 pixels per step (throws std::invalid_argument when this CPU lacks AVX2). Both give the same bytes.
-  static void comparePairRow(const float* pair_row, int width, std::uint8_t* out_a, std::uint8_t* out_b, bool avx2);
+  /// compute()'s comparison step for row y, public for its tests: out[x] has bit o set iff
+  /// R_o(x) > R_o(x + 1), for 0 <= x < width - 1; out[width - 1] = 0. odd as compute(). avx2 false: the
+  /// scalar fallback; true: 8 pixels per step (throws std::invalid_argument when this CPU lacks AVX2).
+  /// Both give the same bytes.
+  static void comparisonRow(const std::vector<cv::Mat>& odd, int y, std::uint8_t* out, bool avx2);
 
   int width() const { return width_; }
   int height() const { return height_; }

@@ -1,6 +1,7 @@
 #include "biovision_stereo/bio_bin_matcher.hpp"
 #include "biovision_stereo/occlusion_filling.hpp"
 #include "avx512_clone.hpp"
+#include "hamming_window.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -90,6 +91,8 @@ inline void maskedCostRows(const MaskedCostRows& in, int y0, int y1)
   std::vector<std::int16_t> sad(size_t(nd) * w), carry(w);
   std::vector<std::vector<std::int16_t>> smallest(n_th, std::vector<std::int16_t>(w));
   std::vector<float> masked(size_t(nd) * w);  // the row's colour-masked costs, disparity-major: the DoG's input
+  HammingWindowScratch hamming_scratch;
+  const int h = left_codes.height();
   std::vector<const float*> dog_in(nd);
   std::vector<float*> dog_out(nd);
   std::vector<std::vector<float>> dog_scratch;
@@ -99,6 +102,11 @@ inline void maskedCostRows(const MaskedCostRows& in, int y0, int y1)
   {
     const uchar *l0 = left_planes[0].ptr(y), *l1 = left_planes[1].ptr(y), *l2 = left_planes[2].ptr(y);
     const uchar *r0 = right_planes[0].ptr(y), *r1 = right_planes[1].ptr(y), *r2 = right_planes[2].ptr(y);
+    const int up = std::max(y - 1, 0), down = std::min(y + 1, h - 1);
+    const std::uint8_t *la = left_codes.comparisons(up), *lc = left_codes.comparisons(y),
+                       *lb = left_codes.comparisons(down);
+    const std::uint8_t *ra = right_codes.comparisons(up), *rc = right_codes.comparisons(y),
+                       *rb = right_codes.comparisons(down);
     for (int k = 0; k < nd; ++k)
     {
       std::int16_t* s = &sad[size_t(k) * w];
@@ -107,7 +115,7 @@ inline void maskedCostRows(const MaskedCostRows& in, int y0, int y1)
       for (int x = k; x < w; ++x)
         s[x] = static_cast<std::int16_t>(std::abs(l0[x] - r0[x - k]) + std::abs(l1[x] - r1[x - k]) +
                                          std::abs(l2[x] - r2[x - k]));
-      Hamming::row(left_codes.row(y), right_codes.row(y), w, k, kMaxHamming, &masked[size_t(k) * w]);
+      hammingWindowRow(la, lc, lb, ra, rc, rb, w, k, kMaxHamming, &masked[size_t(k) * w], hamming_scratch);
     }
     // BT = the N_th smallest SAD of each pixel: a compare-exchange chain over x, smallest[0..n_th) kept
     // sorted per pixel, each disparity's SAD carried down the chain (exact, ties included).
@@ -310,8 +318,9 @@ CostVolume BioBinMatcher::levelCosts(size_t level, const cv::Mat& left, const cv
   // (c) odd simple cells -> rolling 256-bit descriptors.
   PixelDescriptorImage& left_codes = codes_[level][0];
   PixelDescriptorImage& right_codes = codes_[level][1];
-  PixelDescriptorImage::compute(oddResponses(level, left_gray), left_codes);
-  PixelDescriptorImage::compute(oddResponses(level, right_gray), right_codes);
+  // Comparison bytes only: the costs are taken from them directly (Hamming::windowRow), no 256-bit codes.
+  PixelDescriptorImage::computeComparisons(oddResponses(level, left_gray), left_codes);
+  PixelDescriptorImage::computeComparisons(oddResponses(level, right_gray), right_codes);
   if (barriers)
   {
     // Line/edge events of the left image, on the bank's exact decimated grid, back at level size.

@@ -19,9 +19,6 @@ namespace biovision_stereo
 namespace
 {
 constexpr int kOrientations = 8;
-// Comparison bytes of a row are stored from position -8 (zero margins of 8 each side: outside the image the
-// replicated response gives no comparison), so that every window of the descriptor is in bounds.
-constexpr int kMargin = 8;
 
 void checkInput(const std::vector<cv::Mat>& odd)
 {
@@ -140,31 +137,40 @@ PixelDescriptorImage PixelDescriptorImage::compute(const std::vector<cv::Mat>& o
 {
   PixelDescriptorImage image;
   compute(odd, image);
-  image.comparisons_ = {};  // the scratch only pays off in a reused image; a returned one travels light
   return image;
 }
 
-void PixelDescriptorImage::compute(const std::vector<cv::Mat>& odd, PixelDescriptorImage& image)
+void PixelDescriptorImage::computeComparisons(const std::vector<cv::Mat>& odd, PixelDescriptorImage& image)
 {
   checkInput(odd);
   const int w = odd.front().cols, h = odd.front().rows;
   image.width_ = w;
   image.height_ = h;
-  image.data_.resize(size_t(w) * h);  // every descriptor is written below
-  const int row_bytes = w + 2 * kMargin;
+  image.data_.clear();
+  // Zero margins: outside the image the replicated response gives no comparison, and every window of a
+  // descriptor stays in bounds.
+  const int row_bytes = w + kLeftMargin + kRightMargin;
   std::vector<std::uint8_t>& comparisons = image.comparisons_;
   comparisons.resize(size_t(h) * row_bytes);
-  const auto comparisonsOf = [&](int y) { return comparisons.data() + size_t(y) * row_bytes + kMargin; };
+  const auto comparisonsOf = [&](int y) { return comparisons.data() + size_t(y) * row_bytes + kLeftMargin; };
   const bool avx2 = biovision_common::CpuFeatures::host().avx2;
   cv::parallel_for_(cv::Range(0, h), [&](const cv::Range& rows) {
     for (int y = rows.start; y < rows.end; ++y)
     {
       std::uint8_t* c = comparisonsOf(y);
-      std::fill(c - kMargin, c, 0);
-      std::fill(c + w, c + w + kMargin, 0);
+      std::fill(c - kLeftMargin, c, 0);
+      std::fill(c + w, c + w + kRightMargin, 0);
       comparisonRow(odd, y, c, avx2);
     }
   });
+}
+
+void PixelDescriptorImage::compute(const std::vector<cv::Mat>& odd, PixelDescriptorImage& image)
+{
+  computeComparisons(odd, image);
+  const int w = image.width_, h = image.height_;
+  image.data_.resize(size_t(w) * h);  // every descriptor is written below
+  const auto comparisonsOf = [&](int y) { return image.comparisons(y); };
   // Each descriptor: bytes x-8..x+7 of its row, x-4..x+3 of the rows above and below (clamped).
   cv::parallel_for_(cv::Range(0, h), [&](const cv::Range& rows) {
     for (int y = rows.start; y < rows.end; ++y)

@@ -221,6 +221,39 @@ TEST(PixelDescriptor, ComparisonRowsAreTheSameOnEveryPath)
     }
 }
 
+TEST(Hamming, WindowRowEqualsTheDescriptorsDistances)
+{
+  // Every row (the first and last clamp their neighbours), every shift up to beyond the width, widths
+  // around the 16-wide window; ties in the responses give zero comparisons, random ones about half.
+  for (const cv::Size size : {cv::Size(1, 1), cv::Size(5, 3), cv::Size(17, 4), cv::Size(40, 5), cv::Size(113, 3)})
+    for (const bool ties : {false, true})
+    {
+      auto left = randomResponses(size, 3 + size.width), right = randomResponses(size, 101 + size.width);
+      if (ties)
+        for (cv::Mat& m : right)
+          m.forEach<float>([](float& v, const int*) { v = std::round(v * 0.5f); });
+      const PixelDescriptorImage a = PixelDescriptorImage::compute(left), b = PixelDescriptorImage::compute(right);
+      PixelDescriptorImage a_only, b_only;  // comparisons alone give the same
+      PixelDescriptorImage::computeComparisons(left, a_only);
+      PixelDescriptorImage::computeComparisons(right, b_only);
+      std::vector<float> expected(size.width), got(size.width), got_only(size.width);
+      for (int y = 0; y < size.height; ++y)
+        for (int shift = 0; shift <= size.width + 1; ++shift)
+        {
+          Hamming::row(a.row(y), b.row(y), size.width, shift, -1.f, expected.data());
+          Hamming::windowRow(a, b, y, shift, -1.f, got.data());
+          Hamming::windowRow(a_only, b_only, y, shift, -1.f, got_only.data());
+          ASSERT_EQ(got, expected) << size << " row " << y << " shift " << shift << (ties ? " ties" : "");
+          ASSERT_EQ(got_only, expected) << size << " row " << y << " shift " << shift;
+        }
+    }
+  const PixelDescriptorImage small = PixelDescriptorImage::compute(randomResponses(cv::Size(4, 2), 1));
+  const PixelDescriptorImage other = PixelDescriptorImage::compute(randomResponses(cv::Size(5, 2), 1));
+  std::vector<float> out(5);
+  EXPECT_THROW(Hamming::windowRow(small, other, 0, 0, 0.f, out.data()), std::invalid_argument);
+  EXPECT_THROW(Hamming::windowRow(small, small, 2, 0, 0.f, out.data()), std::invalid_argument);
+}
+
 TEST(PixelDescriptor, BitsFollowTheSamplingPattern)
 {
   // One orientation with R increasing to the right except a single drop: only the comparisons that

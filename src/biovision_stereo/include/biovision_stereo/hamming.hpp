@@ -20,6 +20,14 @@ public:
   /// std::invalid_argument when this CPU cannot run `path`.
   static void row(const PixelDescriptor* a, const PixelDescriptor* b, int width, int shift, float missing, float* out,
                   biovision_common::HammingPath path = biovision_common::bestHammingPath());
+  /// The same row of costs for image row y from the images' comparison bytes alone (no descriptor is
+  /// formed): out[x] = distance(a.at(x, y), b.at(x - shift, y)) for x >= shift, `missing` below; exact.
+  /// A descriptor's 256 bits are windows of its neighbours' comparison bytes, so its distance is a sum of
+  /// per-byte bit counts over those windows: byte arithmetic instead of 256-bit codes (BioBin's cost rows
+  /// run this). a and b: one size, from compute() or computeComparisons(); throws std::invalid_argument
+  /// otherwise or when y is outside them.
+  static void windowRow(const PixelDescriptorImage& a, const PixelDescriptorImage& b, int y, int shift, float missing,
+                        float* out);
   static int distance(const PixelDescriptor& a, const PixelDescriptor& b);
   /// Portable bit-counting reference (no POPCNT): for tests.
   static int distanceScalar(const PixelDescriptor& a, const PixelDescriptor& b);

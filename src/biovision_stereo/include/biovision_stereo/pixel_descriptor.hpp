@@ -39,6 +39,9 @@ public:
   /// The same into `out`, reusing its memory: no allocation when `out` held an image of this size
   /// before (a fresh 450x375 image was 7 MB of page faults per call, a third of BioBin's cell stage).
   static void compute(const std::vector<cv::Mat>& odd, PixelDescriptorImage& out);
+  /// Only the comparison bytes (comparisons()), not the descriptors (at() and row() are then empty): what
+  /// Hamming::windowRow needs, 1/32 of the memory.
+  static void computeComparisons(const std::vector<cv::Mat>& odd, PixelDescriptorImage& out);
   /// The same descriptor computed from scratch at one pixel (the reference for tests); odd as compute().
   static PixelDescriptor fromScratch(const std::vector<cv::Mat>& odd, int x, int y);
 
@@ -48,6 +51,15 @@ public:
   /// Both give the same bytes.
   static void comparisonRow(const std::vector<cv::Mat>& odd, int y, std::uint8_t* out, bool avx2);
 
+  /// Zero bytes before position 0 and after width - 1 of every comparison row (the right side also lets a
+  /// 64-byte vector loop run past the row's end).
+  static constexpr int kLeftMargin = 8, kRightMargin = 72;
+  /// Row y's comparison bytes (see comparisonRow): position 0 of the row; positions -kLeftMargin..-1 and
+  /// width..width+kRightMargin-1 are readable zeros. Valid after compute() or computeComparisons().
+  const std::uint8_t* comparisons(int y) const
+  {
+    return comparisons_.data() + size_t(y) * (width_ + kLeftMargin + kRightMargin) + kLeftMargin;
+  }
   int width() const { return width_; }
   int height() const { return height_; }
   const PixelDescriptor& at(int x, int y) const { return data_[size_t(y) * width_ + x]; }
@@ -57,6 +69,6 @@ public:
 private:
   int width_ = 0, height_ = 0;
   std::vector<PixelDescriptor> data_;
-  std::vector<std::uint8_t> comparisons_;  // compute()'s scratch, kept with the image for reuse
+  std::vector<std::uint8_t> comparisons_;  // per row: 8 zero bytes, width comparison bytes, 8 zero bytes
 };
 }  // namespace biovision_stereo

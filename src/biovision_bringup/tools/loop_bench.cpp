@@ -618,7 +618,7 @@ int main(int argc, char** argv)
   figures["simd"] = {
       {"cpu", biovision_common::CpuFeatures::host().describe()},
       {"biobin_cost_volume", biovision_stereo::costSimdName(biovision_stereo::bestCostSimd())},
-      {"biobin_hamming", biovision_stereo::Hamming::pathName()},
+      {"biobin_hamming", "byte windows (" + biovision_stereo::costSimdName(biovision_stereo::bestCostSimd()) + ")"},
       {"biobin_semi_global_aggregation",
        biovision_stereo::SemiGlobalAggregation::name(biovision_stereo::SemiGlobalAggregation::bestSimd())},
       {"recognition_projection", biovision_recognition::toString(biovision_recognition::bestProjectionPath())},

@@ -322,7 +322,7 @@ int main(int argc, char** argv)
                       {"train_scenes", kTrainScenes},
                       {"rule", "whole scenes; parameters tuned on train only; report scenes never tuned on"}};
   results["simd"] = {{"cpu", biovision_common::CpuFeatures::host().describe()},
-                     {"hamming", Hamming::pathName()},
+                     {"hamming", "byte windows in the cost-volume clone"},
                      {"cost_volume", costSimdName(bestCostSimd())},
                      {"semi_global_aggregation", SemiGlobalAggregation::name(SemiGlobalAggregation::bestSimd())}};
   std::map<std::string, DisparityMetrics> means;

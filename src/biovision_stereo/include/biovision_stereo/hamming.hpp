@@ -24,7 +24,7 @@ public:
   /// formed): out[x] = distance(a.at(x, y), b.at(x - shift, y)) for x >= shift, `missing` below; exact.
   /// A descriptor's 256 bits are windows of its neighbours' comparison bytes, so its distance is a sum of
   /// per-byte bit counts over those windows: byte arithmetic instead of 256-bit codes (BioBin's cost rows
-  /// run this). a and b: one size, from compute() or computeComparisons(); throws std::invalid_argument
+  /// run this, on its best CostSimd clone as here). a and b: one size, from compute() or computeComparisons(); throws std::invalid_argument
   /// otherwise or when y is outside them.
   static void windowRow(const PixelDescriptorImage& a, const PixelDescriptorImage& b, int y, int shift, float missing,
                         float* out);

@@ -305,13 +305,22 @@ CostVolume BioBinMatcher::levelCosts(size_t level, const cv::Mat& left, const cv
 
   auto t = Clock::now();
   // (a) CIE L*a*b* (8-bit: L scaled to 0..255, a and b offset by 128).
-  cv::Mat left_lab, right_lab, left_gray, right_gray;
-  cv::cvtColor(left, left_lab, cv::COLOR_BGR2Lab);
-  cv::cvtColor(right, right_lab, cv::COLOR_BGR2Lab);
-  cv::cvtColor(left, left_gray, cv::COLOR_BGR2GRAY);
-  cv::cvtColor(right, right_gray, cv::COLOR_BGR2GRAY);
-  left_gray.convertTo(left_gray, CV_32F, 1.0 / 255.0);
-  right_gray.convertTo(right_gray, CV_32F, 1.0 / 255.0);
+  // One task per image: OpenCV runs a small image's conversion on one thread (Lab 0.054 ms at 113x94), so
+  // the two images side by side halve the fast mode's wait; a large one's runs in parallel inside anyway.
+  cv::Mat labs[2], grays_f[2];
+  const cv::Mat* bgr[2] = {&left, &right};
+  cv::parallel_for_(
+      cv::Range(0, 2),
+      [&](const cv::Range& images) {
+        for (int i = images.start; i < images.end; ++i)
+        {
+          cv::cvtColor(*bgr[i], labs[i], cv::COLOR_BGR2Lab);
+          cv::cvtColor(*bgr[i], grays_f[i], cv::COLOR_BGR2GRAY);
+          grays_f[i].convertTo(grays_f[i], CV_32F, 1.0 / 255.0);
+        }
+      },
+      2);
+  cv::Mat &left_lab = labs[0], &right_lab = labs[1], &left_gray = grays_f[0], &right_gray = grays_f[1];
 
   times_.prepare += msSince(t);
   t = Clock::now();
@@ -555,8 +564,17 @@ DisparityMap BioBinMatcher::compute(const cv::Mat& left_in, const cv::Mat& right
       auto& down = downsampling_[s];
       if (!down || down->input() != left.size() || down->output() != size)
         down = std::make_unique<biovision_common::AreaDownsampling>(left.size(), size);
-      down->apply(left, l);
-      down->apply(right, r);
+      // One task per image (a nested parallel_for_ runs serially): half the waits on a small level.
+      const cv::Mat* in[2] = {&left, &right};
+      cv::Mat* out[2] = {&l, &r};
+      const biovision_common::AreaDownsampling& d = *down;
+      cv::parallel_for_(
+          cv::Range(0, 2),
+          [&](const cv::Range& images) {
+            for (int i = images.start; i < images.end; ++i)
+              d.apply(*in[i], *out[i]);
+          },
+          2);
     }
     times_.prepare += msSince(t);
     const int disparities = static_cast<int>(std::ceil(parameters_.max_disparity / sf)) + 1;

@@ -86,16 +86,37 @@ inline void maskedCostRows(const MaskedCostRows& in, int y0, int y1)
   const cv::Mat *left_planes = in.left_planes, *right_planes = in.right_planes;
   const PixelDescriptorImage &left_codes = *in.left_codes, &right_codes = *in.right_codes;
   CostVolume& costs = *in.costs;
-  // Signed 16 bits (SAD <= 766): SSE2 has signed 16-bit min/max/compare, so the loops below vectorise
-  // on the baseline instruction set (unsigned ones did not).
-  std::vector<std::int16_t> sad(size_t(nd) * w), carry(w);
-  std::vector<std::vector<std::int16_t>> smallest(n_th, std::vector<std::int16_t>(w));
-  std::vector<float> masked(size_t(nd) * w);  // the row's colour-masked costs, disparity-major: the DoG's input
-  HammingWindowScratch hamming_scratch;
+  // The rows' buffers are the thread's, kept between calls: a stripe of rows per call, many calls per
+  // frame (malloc and free were 4.5% of the fast mode). Every value is written before it is read.
+  struct Scratch
+  {
+    // Signed 16 bits (SAD <= 766): SSE2 has signed 16-bit min/max/compare, so the loops below vectorise
+    // on the baseline instruction set (unsigned ones did not).
+    std::vector<std::int16_t> sad, carry;
+    std::vector<std::vector<std::int16_t>> smallest;
+    std::vector<float> masked;  // the row's colour-masked costs, disparity-major: the DoG's input
+    HammingWindowScratch hamming;
+    std::vector<const float*> dog_in;
+    std::vector<float*> dog_out;
+    std::vector<std::vector<float>> dog;
+  };
+  thread_local Scratch scratch;
+  scratch.sad.resize(size_t(nd) * w);
+  scratch.carry.resize(w);
+  scratch.smallest.resize(n_th);
+  for (auto& row : scratch.smallest)
+    row.resize(w);
+  scratch.masked.resize(size_t(nd) * w);
+  scratch.dog_in.resize(nd);
+  scratch.dog_out.resize(nd);
+  std::vector<std::int16_t>&sad = scratch.sad, &carry = scratch.carry;
+  std::vector<std::vector<std::int16_t>>& smallest = scratch.smallest;
+  std::vector<float>& masked = scratch.masked;
+  HammingWindowScratch& hamming_scratch = scratch.hamming;
   const int h = left_codes.height();
-  std::vector<const float*> dog_in(nd);
-  std::vector<float*> dog_out(nd);
-  std::vector<std::vector<float>> dog_scratch;
+  std::vector<const float*>& dog_in = scratch.dog_in;
+  std::vector<float*>& dog_out = scratch.dog_out;
+  std::vector<std::vector<float>>& dog_scratch = scratch.dog;
   for (int k = 0; k < nd; ++k)
     dog_in[k] = &masked[size_t(k) * w];
   for (int y = y0; y < y1; ++y)

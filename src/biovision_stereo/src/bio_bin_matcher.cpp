@@ -19,6 +19,7 @@
 #include "biovision_stereo/disparity_dog.hpp"
 #include "biovision_stereo/hamming.hpp"
 #include "biovision_stereo/iterative_spatial_filter.hpp"
+#include "biovision_stereo/linear_resampling.hpp"
 #include "biovision_stereo/pixel_descriptor.hpp"
 #include "biovision_stereo/semi_global_aggregation.hpp"
 #include "biovision_v1/end_stopped_cells.hpp"
@@ -198,32 +199,39 @@ inline void fuseRow(float* cr, const float* ur, int w, float level)
     cr[x] = cr[x] > level ? 0.5f * cr[x] + 0.5f * ur[x] : cr[x];
 }
 
-/// A fused slice and its least value (NaN ignored), each row's taken while it is in the cache, so that the
-/// aggregation's offset needs no pass of its own over the volume.
-inline float fuseSlice(cv::Mat& c, const cv::Mat& up, float level)
+/// A fused slice and its least value (NaN ignored): the coarser level's slice `mixed` resampled to the
+/// slice's size one row at a time (LinearResampling: cv::resize's bilinear values, bit for bit), each row
+/// averaged in and its least value taken while it is in the cache; neither the upsampled slice nor a pass of
+/// its own for the aggregation's offset.
+inline float fuseSlice(cv::Mat& c, const cv::Mat& mixed, const LinearResampling& resampling,
+                       std::vector<float>& scratch, float level)
 {
   float lowest = HUGE_VALF;
-  for (int y = 0; y < c.rows; ++y)
-  {
-    fuseRow(c.ptr<float>(y), up.ptr<float>(y), c.cols, level);
+  resampling.forEachRow(mixed, scratch, [&](int y, const float* up) {
+    fuseRow(c.ptr<float>(y), up, c.cols, level);
     lowest = CostVolume::lowestOf(c.ptr<float>(y), c.cols, lowest);
-  }
+  });
   return lowest;
 }
 
-__attribute__((target("avx2"), flatten)) float fuseSliceAvx2(cv::Mat& c, const cv::Mat& up, float level)
+__attribute__((target("avx2"), flatten)) float fuseSliceAvx2(cv::Mat& c, const cv::Mat& mixed,
+                                                             const LinearResampling& resampling,
+                                                             std::vector<float>& scratch, float level)
 {
-  return fuseSlice(c, up, level);
+  return fuseSlice(c, mixed, resampling, scratch, level);
 }
 
-BIOVISION_STEREO_AVX512_CLONE float fuseSliceAvx512(cv::Mat& c, const cv::Mat& up, float level)
+BIOVISION_STEREO_AVX512_CLONE float fuseSliceAvx512(cv::Mat& c, const cv::Mat& mixed,
+                                                    const LinearResampling& resampling, std::vector<float>& scratch,
+                                                    float level)
 {
-  return fuseSlice(c, up, level);
+  return fuseSlice(c, mixed, resampling, scratch, level);
 }
 
-__attribute__((flatten)) float fuseSliceGeneric(cv::Mat& c, const cv::Mat& up, float level)
+__attribute__((flatten)) float fuseSliceGeneric(cv::Mat& c, const cv::Mat& mixed, const LinearResampling& resampling,
+                                                std::vector<float>& scratch, float level)
 {
-  return fuseSlice(c, up, level);
+  return fuseSlice(c, mixed, resampling, scratch, level);
 }
 
 // Winner-take-all update of one slice row c (disparity k, valid from x = k) on both views: left pixel
@@ -411,20 +419,22 @@ float BioBinMatcher::fuseWithCoarser(CostVolume& costs, float max_cost, const Co
   const int nd = costs.disparities(), d_in = coarser.disparities();
   const double scale = nd > 1 ? double(d_in - 1) / double(nd - 1) : 0.0;
   std::vector<float> slice_min(nd);
+  const LinearResampling resampling(coarser.size(), costs.size());
   cv::parallel_for_(cv::Range(0, nd), [&](const cv::Range& ks) {
-    cv::Mat mixed, up;
+    cv::Mat mixed;
+    std::vector<float> scratch;
     for (int k = ks.start; k < ks.end; ++k)
     {
       const double kc = k * scale;
       const int k0 = std::min(static_cast<int>(kc), d_in - 1), k1 = std::min(k0 + 1, d_in - 1);
       cv::addWeighted(coarser.slice(k0), 1.0 - (kc - k0), coarser.slice(k1), kc - k0, 0.0, mixed);
-      cv::resize(mixed, up, costs.size(), 0, 0, cv::INTER_LINEAR);
+      cv::Mat slice = costs.slice(k);
       if (cost_simd_ == CostSimd::kAvx512)
-        slice_min[k] = fuseSliceAvx512(costs.slice(k), up, level);
+        slice_min[k] = fuseSliceAvx512(slice, mixed, resampling, scratch, level);
       else if (cost_simd_ == CostSimd::kAvx2)
-        slice_min[k] = fuseSliceAvx2(costs.slice(k), up, level);
+        slice_min[k] = fuseSliceAvx2(slice, mixed, resampling, scratch, level);
       else
-        slice_min[k] = fuseSliceGeneric(costs.slice(k), up, level);
+        slice_min[k] = fuseSliceGeneric(slice, mixed, resampling, scratch, level);
     }
   });
   return *std::min_element(slice_min.begin(), slice_min.end());

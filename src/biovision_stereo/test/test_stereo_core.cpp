@@ -20,6 +20,7 @@
 #include "biovision_common/eval/disparity_metrics.hpp"
 #include "biovision_stereo/hamming.hpp"
 #include "biovision_stereo/iterative_spatial_filter.hpp"
+#include "biovision_stereo/linear_resampling.hpp"
 #include "biovision_stereo/occlusion_filling.hpp"
 #include "biovision_common/eval/middlebury_dataset.hpp"
 #include "biovision_common/cpu_features.hpp"
@@ -922,6 +923,36 @@ TEST(BioBinMatcher, WinnerUpdatesAreTheSameOnEveryPathWithTiesAndNaN)
       EXPECT_EQ(right, ref_right) << n << " " << costSimdName(simd);
     }
   }
+}
+
+TEST(LinearResampling, EqualsOpenCvsBilinearResizeBitForBit)
+{
+  // BioBin's level pairs (Middlebury 450x375 and the robot's 320x240), odd sizes, a single pixel, an
+  // unchanged size and a reduction; values over several orders of magnitude.
+  cv::RNG rng(23);
+  const std::vector<std::pair<cv::Size, cv::Size>> sizes{{{225, 188}, {450, 375}}, {{113, 94}, {225, 188}},
+                                                         {{80, 60}, {160, 120}},   {{10, 7}, {37, 23}},
+                                                         {{1, 1}, {5, 4}},         {{3, 2}, {1, 1}},
+                                                         {{40, 30}, {40, 30}},     {{50, 40}, {20, 17}}};
+  for (const auto& [in, out] : sizes)
+  {
+    cv::Mat src(in, CV_32F);
+    rng.fill(src, cv::RNG::UNIFORM, -1e3, 1e3);
+    cv::Mat expected;
+    cv::resize(src, expected, out, 0, 0, cv::INTER_LINEAR);
+    const LinearResampling resampling(in, out);
+    std::vector<float> scratch;
+    cv::Mat got(out, CV_32F, cv::Scalar(-7.f));
+    int rows = 0;
+    resampling.forEachRow(src, scratch, [&](int y, const float* row) {
+      std::copy(row, row + out.width, got.ptr<float>(y));
+      ++rows;
+    });
+    EXPECT_EQ(rows, out.height);
+    EXPECT_EQ(std::memcmp(got.data, expected.data, got.total() * sizeof(float)), 0)
+        << in << " -> " << out << ": max difference " << cv::norm(got, expected, cv::NORM_INF);
+  }
+  EXPECT_THROW(LinearResampling(cv::Size(0, 3), cv::Size(4, 4)), std::invalid_argument);
 }
 
 // Brute-force reference of OcclusionFilling: per invalid pixel, walk each of the 16 directions to the first valid

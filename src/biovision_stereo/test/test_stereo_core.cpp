@@ -952,6 +952,13 @@ TEST(LinearResampling, EqualsOpenCvsBilinearResizeBitForBit)
     EXPECT_EQ(std::memcmp(got.data, expected.data, got.total() * sizeof(float)), 0)
         << in << " -> " << out << ": max difference " << cv::norm(got, expected, cv::NORM_INF);
   }
+  // An unchanged size is a copy, infinities beside a pixel included (a zero weight would make NaN of them).
+  cv::Mat same(7, 9, CV_32F, cv::Scalar(2.f));
+  same.at<float>(3, 4) = std::numeric_limits<float>::infinity();
+  std::vector<float> scratch;
+  LinearResampling(same.size(), same.size()).forEachRow(same, scratch, [&](int y, const float* row) {
+    EXPECT_EQ(std::memcmp(row, same.ptr<float>(y), same.cols * sizeof(float)), 0) << "row " << y;
+  });
   EXPECT_THROW(LinearResampling(cv::Size(0, 3), cv::Size(4, 4)), std::invalid_argument);
 }
 

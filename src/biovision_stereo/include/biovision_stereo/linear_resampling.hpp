@@ -9,7 +9,9 @@ namespace biovision_stereo
 /// Bilinear resampling of a CV_32FC1 image, row by row, equal bit for bit to cv::resize(src, dst, output,
 /// 0, 0, cv::INTER_LINEAR) (OpenCV 4's coefficients: sample centres (d + 0.5) * in / out - 0.5 rounded to
 /// float, the right border clamped, rows clipped; each row interpolated along x first, then the two rows
-/// combined). What it adds: each output row goes to a callback while it is in the cache, so BioBin's fusion
+/// combined) — except where cv::resize does not interpolate: an output of exactly half the input on both
+/// axes (OpenCV averages areas there; this class still interpolates) and an unchanged size (both copy, but
+/// OpenCV's copy keeps an inf beside a pixel out of it, which a zero weight would not). What it adds: each output row goes to a callback while it is in the cache, so BioBin's fusion
 /// averages a coarser level's slice into a finer one without storing the upsampled slice (a write and a
 /// read of 675 KB per slice at Middlebury size).
 class LinearResampling
@@ -28,6 +30,12 @@ public:
   void forEachRow(const cv::Mat& src, std::vector<float>& scratch, PerRow&& per_row) const
   {
     const int w = output_.width;
+    if (input_ == output_)  // a copy, as cv::resize makes it (no zero weight times a neighbouring inf)
+    {
+      for (int y = 0; y < output_.height; ++y)
+        per_row(y, src.ptr<float>(y));
+      return;
+    }
     scratch.resize(3 * size_t(w));
     float* slot[2] = {scratch.data(), scratch.data() + w};
     float* out = scratch.data() + 2 * size_t(w);

@@ -16,8 +16,9 @@ namespace biovision_stereo
 /// (bit o = orientation o): bytes 0..15 row y, i = -8..7; bytes 16..23 row y-1, i = -4..3; bytes 24..31
 /// row y+1, i = -4..3, in this order in memory (on x86: byte b is bits 8(b%8).. of word b/8). (Only Hamming distances are taken,
 /// which a fixed order of the bits does not change; this one makes a descriptor three copies of a row of
-/// comparison bytes.) Outside the image, responses are those of the nearest pixel (replicated border),
-/// so those comparisons are 0.
+/// comparison bytes.) Outside the image, responses are those of the nearest pixel (replicated border): a
+/// column beyond the left or right edge compares equal responses (0); the row above the first and below
+/// the last is the edge row itself, its comparisons repeated.
 struct PixelDescriptor
 {
   std::array<std::uint64_t, 4> words{};

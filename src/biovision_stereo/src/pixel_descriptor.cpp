@@ -153,14 +153,22 @@ void PixelDescriptorImage::computeComparisons(const std::vector<cv::Mat>& odd, P
   std::vector<std::uint8_t>& comparisons = image.comparisons_;
   comparisons.resize(size_t(h) * row_bytes);
   const auto comparisonsOf = [&](int y) { return comparisons.data() + size_t(y) * row_bytes + kLeftMargin; };
-  const bool avx2 = biovision_common::CpuFeatures::host().avx2;
+  [[maybe_unused]] const bool avx2 = biovision_common::CpuFeatures::host().avx2;
   cv::parallel_for_(cv::Range(0, h), [&](const cv::Range& rows) {
     for (int y = rows.start; y < rows.end; ++y)
     {
       std::uint8_t* c = comparisonsOf(y);
       std::fill(c - kLeftMargin, c, 0);
       std::fill(c + w, c + w + kRightMargin, 0);
-      comparisonRow(odd, y, c, avx2);
+      // The internal paths: the input and the CPU were checked once above, not per row.
+#if defined(BIOVISION_STEREO_X86)
+      if (avx2)
+      {
+        comparisonRowAvx2(odd, y, c);
+        continue;
+      }
+#endif
+      comparisonRowGeneric(odd, y, c);
     }
   });
 }

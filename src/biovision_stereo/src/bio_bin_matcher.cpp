@@ -320,9 +320,11 @@ cv::Size BioBinMatcher::levelSize(cv::Size input, size_t level) const
                   std::max(1, static_cast<int>(std::lround(input.height / sf))));
 }
 
-std::vector<cv::Mat> BioBinMatcher::oddResponses(size_t level, const cv::Mat& gray)
+std::array<std::vector<cv::Mat>, 2> BioBinMatcher::oddResponses(size_t level, const cv::Mat& left_gray,
+                                                                const cv::Mat& right_gray)
 {
-  return odd_banks_[level]->computeOddPairs(gray)[0];
+  auto pairs = odd_banks_[level]->computeOddPairsBatch({left_gray, right_gray});
+  return {std::move(pairs[0][0]), std::move(pairs[1][0])};
 }
 
 CostVolume BioBinMatcher::levelCosts(size_t level, const cv::Mat& left, const cv::Mat& right, int disparities,
@@ -357,8 +359,9 @@ CostVolume BioBinMatcher::levelCosts(size_t level, const cv::Mat& left, const cv
   PixelDescriptorImage& left_codes = codes_[level][0];
   PixelDescriptorImage& right_codes = codes_[level][1];
   // Comparison bytes only: the costs are taken from them directly (Hamming::windowRow), no 256-bit codes.
-  PixelDescriptorImage::computeComparisons(oddResponses(level, left_gray), left_codes);
-  PixelDescriptorImage::computeComparisons(oddResponses(level, right_gray), right_codes);
+  const auto odd = oddResponses(level, left_gray, right_gray);
+  PixelDescriptorImage::computeComparisons(odd[0], left_codes);
+  PixelDescriptorImage::computeComparisons(odd[1], right_codes);
   if (barriers)
   {
     // Line/edge events of the left image, on the bank's exact decimated grid, back at level size.

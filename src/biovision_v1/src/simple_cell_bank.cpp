@@ -189,6 +189,13 @@ void SimpleCellBank::buildSpectra(ScalePlan& p, bool odd_pairs) const
     }
 }
 
+void SimpleCellBank::padImage(const cv::Mat& gray, const ScalePlan& p, cv::Mat& padded)
+{
+  FourierTransform::releaseIfShared(padded);  // a copy of this bank may hold it
+  cv::copyMakeBorder(gray, padded, p.padding, p.padded.height - gray.rows - p.padding, p.padding,
+                     p.padded.width - gray.cols - p.padding, cv::BORDER_REFLECT_101);
+}
+
 std::vector<cv::Mat> SimpleCellBank::imageSpectra(const cv::Mat& gray) const
 {
   const int n_scales = static_cast<int>(current().size());
@@ -199,16 +206,17 @@ std::vector<cv::Mat> SimpleCellBank::imageSpectra(const cv::Mat& gray) const
       sources.push_back(p.spectrum_source);
   // The padded images and spectra are the bank's, kept for the next call (fresh ones were a third of
   // BioBin's page faults); the returned spectra share them until the caller lets go.
-  padded_images_.resize(n_scales);
-  image_spectra_.resize(n_scales);
+  if (static_cast<int>(padded_images_.size()) < n_scales)  // computeOddPairs() may keep more
+  {
+    padded_images_.resize(n_scales);
+    image_spectra_.resize(n_scales);
+  }
   cv::parallel_for_(cv::Range(0, static_cast<int>(sources.size())), [&](const cv::Range& range) {
     for (int k = range.start; k < range.end; ++k)
     {
       const int s = sources[k];
       const ScalePlan& p = current()[s];
-      FourierTransform::releaseIfShared(padded_images_[s]);  // a copy of this bank may hold it
-      cv::copyMakeBorder(gray, padded_images_[s], p.padding, p.padded.height - gray.rows - p.padding, p.padding,
-                         p.padded.width - gray.cols - p.padding, cv::BORDER_REFLECT_101);
+      padImage(gray, p, padded_images_[s]);
       FourierTransform::forward(padded_images_[s], image_spectra_[s]);
     }
   });
@@ -220,28 +228,63 @@ std::vector<cv::Mat> SimpleCellBank::imageSpectra(const cv::Mat& gray) const
 
 std::vector<std::vector<cv::Mat>> SimpleCellBank::computeOddPairs(const cv::Mat& gray)
 {
-  CV_Assert(gray.type() == CV_32FC1 && !gray.empty());
-  plan(gray.size(), true);
+  return std::move(computeOddPairsBatch({gray}).front());
+}
+
+std::vector<std::vector<std::vector<cv::Mat>>> SimpleCellBank::computeOddPairsBatch(const std::vector<cv::Mat>& grays)
+{
+  if (grays.empty())
+    throw std::invalid_argument("SimpleCellBank::computeOddPairsBatch: no image");
+  for (const cv::Mat& gray : grays)
+    if (gray.type() != CV_32FC1 || gray.empty() || gray.size() != grays.front().size())
+      throw std::invalid_argument(
+          "SimpleCellBank::computeOddPairsBatch: the images must be non-empty CV_32FC1 of one size");
+  const cv::Size size = grays.front().size();
+  plan(size, true);
   for (const ScalePlan& p : current())
     if (p.decimation != 1)
       throw std::invalid_argument("SimpleCellBank::computeOdd needs min_grid_wavelength 0 (decimation 1)");
-  const std::vector<cv::Mat> image_spectra = imageSpectra(gray);
+  const int n_images = static_cast<int>(grays.size());
   const int n_scales = static_cast<int>(current().size());
   const int n_pairs = (parameters_.orientations + 1) / 2;
-  std::vector<std::vector<cv::Mat>> out(n_scales, std::vector<cv::Mat>(n_pairs));
-  pair_products_.resize(size_t(n_scales) * n_pairs);
-  cv::parallel_for_(cv::Range(0, n_scales * n_pairs), [&](const cv::Range& range) {
+  std::vector<int> sources;  // the scales whose padding an image spectrum is taken at
+  for (const ScalePlan& p : current())
+    if (std::find(sources.begin(), sources.end(), p.spectrum_source) == sources.end())
+      sources.push_back(p.spectrum_source);
+  // The images' spectra first, then every image's inverse DFTs, each as one parallel loop over all images:
+  // a stereo pair's two forward DFTs run side by side instead of one after the other on one thread.
+  const int n_slots = n_images * n_scales;
+  if (static_cast<int>(padded_images_.size()) < n_slots)
+  {
+    padded_images_.resize(n_slots);
+    image_spectra_.resize(n_slots);
+  }
+  const int n_sources = static_cast<int>(sources.size());
+  cv::parallel_for_(cv::Range(0, n_images * n_sources), [&](const cv::Range& range) {
     for (int job = range.start; job < range.end; ++job)
     {
-      const int s = job / n_pairs, pair = job % n_pairs;
+      const int i = job / n_sources, s = sources[job % n_sources];
+      padImage(grays[i], current()[s], padded_images_[i * n_scales + s]);
+      FourierTransform::forward(padded_images_[i * n_scales + s], image_spectra_[i * n_scales + s]);
+    }
+  });
+  std::vector<std::vector<std::vector<cv::Mat>>> out(
+      n_images, std::vector<std::vector<cv::Mat>>(n_scales, std::vector<cv::Mat>(n_pairs)));
+  if (static_cast<int>(pair_products_.size()) < n_slots * n_pairs)
+    pair_products_.resize(size_t(n_slots) * n_pairs);
+  cv::parallel_for_(cv::Range(0, n_slots * n_pairs), [&](const cv::Range& range) {
+    for (int job = range.start; job < range.end; ++job)
+    {
+      const int i = job / (n_scales * n_pairs), s = job / n_pairs % n_scales, pair = job % n_pairs;
       const ScalePlan& p = current()[s];
       // One buffer per job, kept for the next call (a fresh one per call was a quarter of BioBin's page
       // faults); the returned view shares it, so it is written again only once the caller has let go.
       cv::Mat& product = pair_products_[job];
       FourierTransform::releaseIfShared(product);
-      FourierTransform::multiplySpectra(image_spectra[p.spectrum_source], p.odd_pair_spectra[pair], product);
+      FourierTransform::multiplySpectra(image_spectra_[i * n_scales + p.spectrum_source], p.odd_pair_spectra[pair],
+                                        product);
       FourierTransform::inverseUnscaled(product, product);  // the pair spectra carry the 1/N
-      out[s][pair] = product(cv::Rect(p.padding, p.padding, gray.cols, gray.rows));
+      out[i][s][pair] = product(cv::Rect(p.padding, p.padding, size.width, size.height));
     }
   });
   return out;

@@ -184,6 +184,38 @@ TEST(FourierTransform, ReusesAnUnsharedSpectrumAndNeverWritesIntoAViewHeldElsewh
   EXPECT_EQ(cv::norm(kept, kept_copy, cv::NORM_INF), 0.0);
 }
 
+TEST(SimpleCellBank, BatchOfImagesEqualsOneCallPerImageBitForBit)
+{
+  GaborParameters p;
+  p.min_grid_wavelength = 0.0;
+  p.wavelengths = {4.0, 8.0};             // two scales: the per-image, per-scale buffers and the shared spectrum source
+  FourierTransform::setMeasurePolicy(0);  // estimated plans throughout: a measured one may round differently
+  const cv::Mat a = texture(70, 61, 5), b = texture(70, 61, 6);
+  SimpleCellBank single(p), batch(p);
+  const auto ref_a = single.computeOddPairs(a);
+  const auto ref_b = single.computeOddPairs(b);
+  for (int round = 0; round < 2; ++round)  // the second round reuses the batch's buffers
+  {
+    const auto both = batch.computeOddPairsBatch({a, b});
+    ASSERT_EQ(both.size(), 2u);
+    for (size_t s = 0; s < ref_a.size(); ++s)
+      for (size_t k = 0; k < ref_a[s].size(); ++k)
+      {
+        EXPECT_EQ(cv::norm(both[0][s][k], ref_a[s][k], cv::NORM_INF), 0.0) << s << " " << k;
+        EXPECT_EQ(cv::norm(both[1][s][k], ref_b[s][k], cv::NORM_INF), 0.0) << s << " " << k;
+        EXPECT_NE(both[0][s][k].data, both[1][s][k].data);
+      }
+  }
+  // A single image through the same bank afterwards: the batch's larger buffers do not confuse it.
+  EXPECT_EQ(cv::norm(batch.computeOddPairs(b)[1][3], ref_b[1][3], cv::NORM_INF), 0.0);
+  EXPECT_THROW(batch.computeOddPairsBatch({}), std::invalid_argument);
+  EXPECT_THROW(batch.computeOddPairsBatch({a, texture(70, 60, 6)}), std::invalid_argument);
+  cv::Mat a8;
+  a.convertTo(a8, CV_8U, 255.0);
+  EXPECT_THROW(batch.computeOddPairsBatch({a, a8}), std::invalid_argument);
+  FourierTransform::setMeasurePolicy(FourierTransform::kMeasureAfter);
+}
+
 TEST(SimpleCellBank, RepeatedCallsLeaveEarlierResultsHeldByTheCallerIntact)
 {
   GaborParameters p;

@@ -84,9 +84,10 @@ public:
                         float* max_cost = nullptr);
 
 private:
-  /// The odd simple cells of one level (8 orientations as 4 CV_32FC2 pairs, full resolution, wavelength
-  /// base_wavelength): the one place BioBin computes V1 responses for its descriptors. gray: CV_32F in [0, 1].
-  std::vector<cv::Mat> oddResponses(size_t level, const cv::Mat& gray);
+  /// The odd simple cells of one level's left and right image ([image]: 8 orientations as 4 CV_32FC2 pairs,
+  /// full resolution, wavelength base_wavelength): the one place BioBin computes V1 responses for its
+  /// descriptors. Both images in one call, so that their DFTs share the threads. gray: CV_32F in [0, 1].
+  std::array<std::vector<cv::Mat>, 2> oddResponses(size_t level, const cv::Mat& left_gray, const cv::Mat& right_gray);
   /// max_cost: costs.max(), which sets the fusion level L. Returns the fused costs' min() (found on the way).
   float fuseWithCoarser(CostVolume& costs, float max_cost, const CostVolume& coarser) const;
   void spatialFilter(CostVolume& costs, const cv::Mat& barriers);

@@ -48,6 +48,13 @@ public:
   /// views stay valid; a raw pointer into them does not).
   std::vector<std::vector<cv::Mat>> computeOddPairs(const cv::Mat& gray);
 
+  /// computeOddPairs() of several images of one size at once (BioBin's stereo pair), result [image][scale]
+  /// [pair]: first every image's forward DFT, then every image's inverse DFTs, each as one parallel loop,
+  /// so that the images' transforms run side by side (one image's single forward DFT would keep the other
+  /// threads idle). The same values as one call per image, bit for bit. Throws std::invalid_argument on no
+  /// image, an empty or non-CV_32FC1 one, or images of different sizes.
+  std::vector<std::vector<std::vector<cv::Mat>>> computeOddPairsBatch(const std::vector<cv::Mat>& grays);
+
   const GaborParameters& parameters() const { return parameters_; }
 
   /// Kernel spectra sets kept (one per distinct set of DFT sizes), least recently used dropped first.
@@ -102,6 +109,8 @@ private:
   void buildSpectra(ScalePlan& p, bool odd_pairs) const;
   const std::vector<ScalePlan>& current() const { return cache_.at(current_).plans; }
   std::vector<cv::Mat> imageSpectra(const cv::Mat& gray) const;
+  /// gray padded by p.padding with BORDER_REFLECT_101 to p.padded, into `padded` (reused when unshared).
+  static void padImage(const cv::Mat& gray, const ScalePlan& p, cv::Mat& padded);
   static std::vector<SpectrumRun> supportRuns(const cv::Mat& spectrum, const cv::Size& grid);
 
   GaborParameters parameters_;
@@ -111,7 +120,8 @@ private:
   // compute()'s folded spectra and even/odd responses per (scale, orientation), reused once the caller
   // let go of the responses.
   std::vector<cv::Mat> folded_, kept_responses_;
-  // imageSpectra()'s padded images and spectra per scale, reused between calls (one caller at a time).
+  // imageSpectra()'s padded images and spectra per scale (computeOddPairs(): per image and scale), reused
+  // between calls (one caller at a time).
   mutable std::vector<cv::Mat> padded_images_, image_spectra_;
   long uses_ = 0, plans_built_ = 0;
   bool coarse_dft_sizes_ = false;

@@ -103,7 +103,7 @@ inline void DisparityDog::recursiveAdd(const std::vector<const float*>& in, int 
       o[x] = g.b * c[x] + g.a1 * w1[x] + g.a2 * w2[x] + g.a3 * w3[x];
   }
   std::vector<float> last(s[n - 1]);
-  for (int e = n - 1; e >= 0; --e)
+  for (int e = n - 1; e >= pad; --e)  // the left pad's anti-causal values are never read
   {
     const float* y1 = e + 1 < n ? s[e + 1].data() : last.data();
     const float* y2 = e + 2 < n ? s[e + 2].data() : last.data();

@@ -40,7 +40,8 @@ const char* kDescription =
     "16), biobin_fast_thesis, bm,\n"
     "bm_fast (StereoBM on the quarter-size pair, the fast mode's resolution), sgbm (MODE_SGBM_3WAY), binary_sgbm\n"
     "(contrib). Metrics on the non-occluded mask when there is one: bad0.5/1/2/4 (%, invalid = bad), avgerr over\n"
-    "valid estimates, invalid %, seconds per pair (median of --repeats runs after warm-up runs until the DFT "
+    "valid estimates, invalid %, seconds per pair (median of --repeats runs, the methods' runs interleaved round by "
+    "round, after warm-up runs until the DFT "
     "plans are measured), BioBin's stage\n"
     "times. --split train|report|all picks the scenes by the fixed whole-scene split written in the JSON: tune on\n"
     "train, report on report. Prints the JSON.";
@@ -282,28 +283,38 @@ int main(int argc, char** argv)
     nlohmann::ordered_json& scene_json = scenes_json[s.name];
     scene_json["size"] = {s.left.cols, s.left.rows};
     scene_json["max_disparity"] = s.max_disparity;
+    // Every method warmed up first, then the timed runs interleaved round by round (each method once per
+    // round): a burst of load on this shared machine then lands on ours and the peers alike, not on
+    // whichever method was running (the same-run ratio had moved by +-15% between runs).
+    std::map<std::string, cv::Mat> result;
+    std::map<std::string, std::vector<double>> t;
+    std::map<std::string, BioBinMatcher::StageTimes> times;
     for (const auto& name : methods)
     {
       const Matcher& match = matchers.at(name);
-      cv::Mat d;
-      biovision_v1::FourierTransform::warmUp([&] { d = match(s); });  // until the DFT plans it uses are measured
-      std::vector<double> t;
-      for (int r = 0; r < repeats; ++r)
+      biovision_v1::FourierTransform::warmUp([&] { result[name] = match(s); });  // until its DFT plans are measured
+    }
+    for (int r = 0; r < repeats; ++r)
+      for (const auto& name : methods)
       {
         const auto start = std::chrono::steady_clock::now();
-        d = match(s);
-        t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        result[name] = matchers.at(name)(s);
+        t[name].push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        times[name] = last_times;  // BioBin's stages of this method's last timed run
       }
-      std::nth_element(t.begin(), t.begin() + t.size() / 2, t.end());
-      const double sec = t[t.size() / 2];
-      const DisparityMetrics m = DisparityMetrics::compute(d, s.ground_truth, s.nonoccluded);
+    for (const auto& name : methods)
+    {
+      std::vector<double>& runs = t[name];
+      std::nth_element(runs.begin(), runs.begin() + runs.size() / 2, runs.end());
+      const double sec = runs[runs.size() / 2];
+      const DisparityMetrics m = DisparityMetrics::compute(result[name], s.ground_truth, s.nonoccluded);
       per_method[name].push_back(m);
       seconds[name].push_back(sec);
       scene_json[name] = metricsJson(m, sec);
       if (name.rfind("biobin", 0) == 0)
       {
-        scene_json[name]["stage_ms"] = stageJson(last_times);
-        stages[name].push_back(last_times);
+        scene_json[name]["stage_ms"] = stageJson(times[name]);
+        stages[name].push_back(times[name]);
       }
       std::fprintf(stderr, "%-12s %-12s bad1.0 %6.2f%%  bad2.0 %6.2f%%  invalid %5.1f%%  avgerr %.3f  %.4f s\n",
                    s.name.c_str(), name.c_str(), m.bad1, m.bad2, m.invalid, m.avgerr, sec);

@@ -381,6 +381,8 @@ int main(int argc, char** argv)
       "biobin_filled = the defaults plus occlusion filling and a 3x3 median (chosen on the train scenes; off in the "
       "robot's defaults: on its tabletop bag they turn invalid pixels into wrong ones), "
       "biobin_thesis = the thesis' iterative spatial filter; *_fast = one scale (lambda 16, quarter size). "
+      "seconds_per_pair = the median of the timed runs (every method warmed up, then the methods' runs interleaved "
+      "round by round, so that a burst of load on the machine lands on all of them), mean over scenes. "
       "stage_ms_* = BioBin's stage times [ms] (lastTimes() of the last timed run, mean over scenes; prepare = each "
       "level's "
       "area averaging and colour conversions; costs_dog = the costs and the DoG along disparity, computed together one "

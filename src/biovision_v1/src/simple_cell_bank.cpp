@@ -236,9 +236,9 @@ std::vector<std::vector<std::vector<cv::Mat>>> SimpleCellBank::computeOddPairsBa
   if (grays.empty())
     throw std::invalid_argument("SimpleCellBank::computeOddPairsBatch: no image");
   for (const cv::Mat& gray : grays)
-    if (gray.type() != CV_32FC1 || gray.empty() || gray.size() != grays.front().size())
+    if (gray.dims != 2 || gray.type() != CV_32FC1 || gray.empty() || gray.size() != grays.front().size())
       throw std::invalid_argument(
-          "SimpleCellBank::computeOddPairsBatch: the images must be non-empty CV_32FC1 of one size");
+          "SimpleCellBank::computeOddPairsBatch: the images must be non-empty 2-D CV_32FC1 of one size");
   const cv::Size size = grays.front().size();
   plan(size, true);
   for (const ScalePlan& p : current())

@@ -213,6 +213,8 @@ TEST(SimpleCellBank, BatchOfImagesEqualsOneCallPerImageBitForBit)
   cv::Mat a8;
   a.convertTo(a8, CV_8U, 255.0);
   EXPECT_THROW(batch.computeOddPairsBatch({a, a8}), std::invalid_argument);
+  const int dims3[3] = {2, 3, 4};
+  EXPECT_THROW(batch.computeOddPairsBatch({cv::Mat(3, dims3, CV_32F, cv::Scalar(0))}), std::invalid_argument);
   FourierTransform::setMeasurePolicy(FourierTransform::kMeasureAfter);
 }
 

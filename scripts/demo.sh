@@ -10,9 +10,9 @@ set +u; source devel/setup.bash; set -u
 export ROS_HOME=${ROS_HOME:-$PWD/build/ros_home}
 mkdir -p "$out" "$ROS_HOME"
 scenario=${SCENARIO:-mission}
-rm -f "$out/mission.json" "$out/mission.md" "$out/path.csv" "$out/path.png" "$out/memory.db" "$out/report.json" "$out/report.md" "$out/fixations.json" "$out/fixations.md" "$out/pan.csv" \
+rm -f "$out/mission.json" "$out/mission.md" "$out/path.csv" "$out/path.png" "$out/memory.db" "$out/memory.db.lock" "$out/report.json" "$out/report.md" "$out/fixations.json" "$out/fixations.md" "$out/pan.csv" \
   "$out/recognition.json" "$out/recognition.md" "$out/objects.bin" "$out/panel.png" "$out/pan.png" \
-  "$out/rates.png" "$out/report.html"
+  "$out/rates.png" "$out/report.html" "$out/ltm.pgm" "$out/run_report.log"
 # A private master port so a demo never talks to a roscore the user already runs.
 port=$((20000 + RANDOM % 20000))
 export ROS_MASTER_URI=http://localhost:$port
@@ -35,6 +35,7 @@ tail -n +2 "$out/report.md"
 [[ -f "$out/fixations.md" ]] && { echo; cat "$out/fixations.md"; }
 [[ -f "$out/recognition.md" ]] && { echo; cat "$out/recognition.md"; }
 [[ -f "$out/report.html" ]] && { echo; echo "Pictures and report: $out/report.html"; }
+echo "Logs: $out/roslaunch.log (the launch), $ROS_HOME/log/latest/ (each node's own log)"
 /usr/bin/python3 -c 'import json,sys; sys.exit(0 if json.load(open(sys.argv[1]))["ok"] else 1)' "$out/report.json" || exit 1
 if [[ $scenario == mission ]]; then
   # The demo fails when the mission did not run to an outcome; a mission that ran and failed (object

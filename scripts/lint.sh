@@ -30,7 +30,7 @@ git clone -q --no-checkout "$PWD" "$tmp/ws" && git -C "$tmp/ws" checkout -q "$he
 
 # 1. catkin_lint
 if catkin_lint -W1 --strict "$tmp/ws/src" >"$tmp/catkin_lint.log" 2>&1; then
-  echo "lint: catkin_lint: $(tail -n 1 "$tmp/catkin_lint.log")"
+  echo "lint: catkin_lint -W1 --strict: no problems ($(tail -n 1 "$tmp/catkin_lint.log" | sed 's/^catkin_lint: //'))"
 else
   grep -v "rosdep" "$tmp/catkin_lint.log"
   echo "lint: catkin_lint FAILED"

@@ -114,6 +114,20 @@ __attribute__((target("avx2"))) void comparisonRowAvx2(const std::vector<cv::Mat
   }
 }
 #endif
+
+/// One row on the path asked for, unchecked: comparisonRow() checks the input and the CPU once per call,
+/// computeComparisons() once per image.
+inline void comparisonRowOn(const std::vector<cv::Mat>& odd, int y, std::uint8_t* out, [[maybe_unused]] bool avx2)
+{
+#if defined(BIOVISION_STEREO_X86)
+  if (avx2)
+  {
+    comparisonRowAvx2(odd, y, out);
+    return;
+  }
+#endif
+  comparisonRowGeneric(odd, y, out);
+}
 }  // namespace
 
 void PixelDescriptorImage::comparisonRow(const std::vector<cv::Mat>& odd, int y, std::uint8_t* out, bool avx2)
@@ -123,14 +137,7 @@ void PixelDescriptorImage::comparisonRow(const std::vector<cv::Mat>& odd, int y,
     throw std::invalid_argument("PixelDescriptorImage::comparisonRow: row outside the maps");
   if (avx2 && !biovision_common::CpuFeatures::host().avx2)
     throw std::invalid_argument("PixelDescriptorImage::comparisonRow: this CPU has no AVX2");
-#if defined(BIOVISION_STEREO_X86)
-  if (avx2)
-  {
-    comparisonRowAvx2(odd, y, out);
-    return;
-  }
-#endif
-  comparisonRowGeneric(odd, y, out);
+  comparisonRowOn(odd, y, out, avx2);
 }
 
 PixelDescriptorImage PixelDescriptorImage::compute(const std::vector<cv::Mat>& odd)
@@ -153,22 +160,14 @@ void PixelDescriptorImage::computeComparisons(const std::vector<cv::Mat>& odd, P
   std::vector<std::uint8_t>& comparisons = image.comparisons_;
   comparisons.resize(size_t(h) * row_bytes);
   const auto comparisonsOf = [&](int y) { return comparisons.data() + size_t(y) * row_bytes + kLeftMargin; };
-  [[maybe_unused]] const bool avx2 = biovision_common::CpuFeatures::host().avx2;
+  const bool avx2 = biovision_common::CpuFeatures::host().avx2;
   cv::parallel_for_(cv::Range(0, h), [&](const cv::Range& rows) {
     for (int y = rows.start; y < rows.end; ++y)
     {
       std::uint8_t* c = comparisonsOf(y);
       std::fill(c - kLeftMargin, c, 0);
       std::fill(c + w, c + w + kRightMargin, 0);
-      // The internal paths: the input and the CPU were checked once above, not per row.
-#if defined(BIOVISION_STEREO_X86)
-      if (avx2)
-      {
-        comparisonRowAvx2(odd, y, c);
-        continue;
-      }
-#endif
-      comparisonRowGeneric(odd, y, c);
+      comparisonRowOn(odd, y, c, avx2);  // the input and the CPU were checked once above, not per row
     }
   });
 }

@@ -189,6 +189,15 @@ void SimpleCellBank::buildSpectra(ScalePlan& p, bool odd_pairs) const
     }
 }
 
+std::vector<int> SimpleCellBank::spectrumSources() const
+{
+  std::vector<int> sources;
+  for (const ScalePlan& p : current())
+    if (std::find(sources.begin(), sources.end(), p.spectrum_source) == sources.end())
+      sources.push_back(p.spectrum_source);
+  return sources;
+}
+
 void SimpleCellBank::padImage(const cv::Mat& gray, const ScalePlan& p, cv::Mat& padded)
 {
   FourierTransform::releaseIfShared(padded);  // a copy of this bank may hold it
@@ -200,10 +209,7 @@ std::vector<cv::Mat> SimpleCellBank::imageSpectra(const cv::Mat& gray) const
 {
   const int n_scales = static_cast<int>(current().size());
   // Image spectra, one per distinct padding (coarse scales share the widest one).
-  std::vector<int> sources;
-  for (const ScalePlan& p : current())
-    if (std::find(sources.begin(), sources.end(), p.spectrum_source) == sources.end())
-      sources.push_back(p.spectrum_source);
+  const std::vector<int> sources = spectrumSources();
   // The padded images and spectra are the bank's, kept for the next call (fresh ones were a third of
   // BioBin's page faults); the returned spectra share them until the caller lets go.
   if (static_cast<int>(padded_images_.size()) < n_scales)  // computeOddPairs() may keep more
@@ -247,10 +253,7 @@ std::vector<std::vector<std::vector<cv::Mat>>> SimpleCellBank::computeOddPairsBa
   const int n_images = static_cast<int>(grays.size());
   const int n_scales = static_cast<int>(current().size());
   const int n_pairs = (parameters_.orientations + 1) / 2;
-  std::vector<int> sources;  // the scales whose padding an image spectrum is taken at
-  for (const ScalePlan& p : current())
-    if (std::find(sources.begin(), sources.end(), p.spectrum_source) == sources.end())
-      sources.push_back(p.spectrum_source);
+  const std::vector<int> sources = spectrumSources();
   // The images' spectra first, then every image's inverse DFTs, each as one parallel loop over all images:
   // a stereo pair's two forward DFTs run side by side instead of one after the other on one thread.
   const int n_slots = n_images * n_scales;

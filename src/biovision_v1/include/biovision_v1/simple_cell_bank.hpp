@@ -112,6 +112,8 @@ private:
   void buildSpectra(ScalePlan& p, bool odd_pairs) const;
   const std::vector<ScalePlan>& current() const { return cache_.at(current_).plans; }
   std::vector<cv::Mat> imageSpectra(const cv::Mat& gray) const;
+  /// The scales whose padding an image spectrum is taken at (each distinct spectrum_source once, in order).
+  std::vector<int> spectrumSources() const;
   /// gray padded by p.padding with BORDER_REFLECT_101 to p.padded, into `padded` (reused when unshared).
   static void padImage(const cv::Mat& gray, const ScalePlan& p, cv::Mat& padded);
   static std::vector<SpectrumRun> supportRuns(const cv::Mat& spectrum, const cv::Size& grid);

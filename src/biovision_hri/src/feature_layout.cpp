@@ -4,6 +4,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "biovision_common/payload_reader.hpp"
+#include "biovision_common/payload_writer.hpp"
+
 namespace biovision_hri
 {
 namespace
@@ -33,5 +36,34 @@ void FeatureLayout::validate() const
   check(grid_step == 1 || (grid_step == 2 && wavelength >= 4.0),
         "grid_step must be 1, or 2 with wavelength >= 4 px, got " + std::to_string(grid_step) + " (wavelength " +
             std::to_string(wavelength) + ")");
+}
+
+void FeatureLayout::write(biovision_common::PayloadWriter& w) const
+{
+  w.put<double>(wavelength);
+  w.put<int32_t>(orientations);
+  w.put<int32_t>(cell_size);
+  w.put<int32_t>(block_cells);
+  w.put<int32_t>(window_blocks);
+  w.put<double>(epsilon);
+  w.put<int32_t>(grid_step);
+  w.put<double>(clip);
+  w.put<double>(aspect_ratio);
+}
+
+FeatureLayout FeatureLayout::read(biovision_common::PayloadReader& r)
+{
+  FeatureLayout l;
+  l.wavelength = r.get<double>();
+  l.orientations = r.get<int32_t>();
+  l.cell_size = r.get<int32_t>();
+  l.block_cells = r.get<int32_t>();
+  l.window_blocks = r.get<int32_t>();
+  l.epsilon = r.get<double>();
+  l.grid_step = r.get<int32_t>();
+  l.clip = r.get<double>();
+  l.aspect_ratio = r.get<double>();
+  l.validate();
+  return l;
 }
 }  // namespace biovision_hri

@@ -42,15 +42,7 @@ void LinearDetectorModel::save(const std::string& path) const
   validate();
   biovision_common::PayloadWriter w;
   w.putString(kind);
-  w.put<double>(layout.wavelength);
-  w.put<int32_t>(layout.orientations);
-  w.put<int32_t>(layout.cell_size);
-  w.put<int32_t>(layout.block_cells);
-  w.put<int32_t>(layout.window_blocks);
-  w.put<double>(layout.epsilon);
-  w.put<int32_t>(layout.grid_step);
-  w.put<double>(layout.clip);
-  w.put<double>(layout.aspect_ratio);
+  layout.write(w);
   w.putArray(weights.data(), weights.size());
   w.put<float>(bias);
   w.putString(provenance);
@@ -63,15 +55,7 @@ LinearDetectorModel LinearDetectorModel::load(const std::string& path)
                                                                  [](biovision_common::PayloadReader& r) {
                                                                    LinearDetectorModel m;
                                                                    m.kind = r.getString(64);
-                                                                   m.layout.wavelength = r.get<double>();
-                                                                   m.layout.orientations = r.get<int32_t>();
-                                                                   m.layout.cell_size = r.get<int32_t>();
-                                                                   m.layout.block_cells = r.get<int32_t>();
-                                                                   m.layout.window_blocks = r.get<int32_t>();
-                                                                   m.layout.epsilon = r.get<double>();
-                                                                   m.layout.grid_step = r.get<int32_t>();
-                                                                   m.layout.clip = r.get<double>();
-                                                                   m.layout.aspect_ratio = r.get<double>();
+                                                                   m.layout = FeatureLayout::read(r);
                                                                    m.weights = r.getArray<float>(1u << 20);
                                                                    m.bias = r.get<float>();
                                                                    m.provenance = r.getString(1u << 16);

@@ -1,8 +1,10 @@
 // Builds the gesture template file for the hri node: the template part of the LinTO frames (their
 // earlier recording session; hand box from the annotation) under their gesture labels, plus rejection
 // templates ("none") from random patches of the training scenes. Stored as an ObjectMemory
-// (StoredFile "BVOBJMEM": checksummed, atomic, tied to the descriptor model).
+// (StoredFile "BVOBJMEM": checksummed, atomic, tied to the descriptor model). With --posture-out, the
+// same regions also train the hand posture SVMs (HandPostureClassifier, StoredFile "BVHRIPOS").
 
+#include <ctime>
 #include <iostream>
 #include <map>
 #include <sstream>
@@ -12,13 +14,14 @@
 
 #include "biovision_common/tool_options.hpp"
 #include "biovision_hri/gesture_recognizer.hpp"
+#include "biovision_hri/hand_posture_classifier.hpp"
 #include "hri_datasets.hpp"
 
 using namespace biovision_hri;
 
 int main(int argc, char** argv)
 {
-  std::string out, data = hriDataRoot("../shared"), set = "linto", json_path;
+  std::string out, posture_out, data = hriDataRoot("../shared"), set = "linto", json_path;
   std::string descriptor_model = ros::package::getPath("biovision_recognition") + "/models/v1_ldahash_128.bin";
   int rejection = 100, seed = 3;
   // Triesch's postures are ASL letters: B is the open palm, D the raised index, V the V sign, A the fist;
@@ -30,6 +33,8 @@ int main(int argc, char** argv)
                                         "plus rejection templates from training scenes.");
   CLI::App& app = options.app();
   app.add_option("--out", out, "template file to write (the node's ~gesture_templates)")->required();
+  app.add_option("--posture-out", posture_out,
+                 "also train the hand posture SVMs on the same regions and write them (the node's ~posture_model)");
   app.add_option("--set", set, "linto or triesch")->check(CLI::IsMember({"linto", "triesch"}));
   app.add_option("--data", data, "the hri data folder ($BIOVISION_SHARED/data/hri)");
   app.add_option("--descriptor-model", descriptor_model, "biovision_recognition descriptor model");
@@ -47,6 +52,7 @@ int main(int argc, char** argv)
     auto descriptor = std::make_shared<const biovision_recognition::V1Descriptor>(
         biovision_recognition::DescriptorModel::load(descriptor_model));
     GestureRecognizer recognizer(descriptor, GestureRecognizer::Parameters());
+    HandPostureClassifier posture{FeatureLayout(), HandPostureClassifier::Parameters()};
     const auto samples = set == "linto" ? lintoSamples(data) : trieschSamples(data);
     std::map<std::string, std::string> renames;
     std::stringstream pairs(label_map);
@@ -75,6 +81,8 @@ int main(int argc, char** argv)
       }
       const std::string label = renamed(g.label);
       const size_t k = recognizer.addTemplate(image, box, label);
+      if (!posture_out.empty())
+        posture.addExample(image, box, label);
       per_label[label] = per_label.value(label, 0) + 1;
       std::cerr << "build_gesture_templates: " << label << " <- " << g.file << " (" << k << " keypoints)\n";
     }
@@ -83,8 +91,23 @@ int main(int argc, char** argv)
       scenes.push_back(readGray(f));
     cv::RNG rng(static_cast<uint64_t>(seed));
     for (const cv::Mat& patch : randomScenePatches(scenes, rejection, rng, 100, 250))
+    {
       recognizer.addTemplate(patch, cv::Rect(0, 0, patch.cols, patch.rows), "none");
+      if (!posture_out.empty())
+        posture.addExample(patch, cv::Rect(0, 0, patch.cols, patch.rows), "none");
+    }
     recognizer.saveTemplates(out);
+    if (!posture_out.empty())
+    {
+      posture.train();
+      char date[16];
+      const std::time_t now = std::time(nullptr);
+      std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
+      posture.save(posture_out, options.command() + " | " + set + " template part, " +
+                                    std::to_string(posture.exampleCount()) + " augmented examples | " + date);
+      std::cerr << "build_gesture_templates: wrote " << posture_out << ": " << posture.labels().size()
+                << " classes from " << posture.exampleCount() << " augmented examples\n";
+    }
     std::cerr << "build_gesture_templates: wrote " << out << ": " << recognizer.templates().views().size()
               << " templates, " << recognizer.templates().codeCount() << " codes\n";
     if (!json_path.empty())
@@ -97,7 +120,8 @@ int main(int argc, char** argv)
                                             {"templates_per_label", per_label},
                                             {"rejection_templates", rejection},
                                             {"codes", recognizer.templates().codeCount()},
-                                            {"out", out}});
+                                            {"out", out},
+                                            {"posture_out", posture_out}});
   }
   catch (const std::exception& e)
   {

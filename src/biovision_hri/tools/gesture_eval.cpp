@@ -1,10 +1,13 @@
-// Gesture recognition by V1 keypoint templates (thesis §2.4) on held-out data: LinTO frames of the later
-// recording session against templates of the earlier one, or Triesch postures of the second half of the
-// people against templates of the first half. The hand region is the annotated box (the detector's job
-// is measured by detector_eval). Reports accuracy, the confusion matrix, and false gestures on
-// gesture-free regions (random patches of held-out scenes) with and without the rejection class.
+// Gesture recognition on held-out data: LinTO frames of the later recording session against templates of
+// the earlier one, or Triesch postures of the second half of the people against templates of the first
+// half. Three methods: V1 keypoint templates (thesis §2.4, GestureRecognizer), the hand region's
+// complex-cell HOG classified by linear SVMs (HandPostureClassifier, ours), and both (keypoints when they
+// verify a gesture, else the SVMs). The hand region is the annotated box (the detector's job is measured
+// by detector_eval). Reports accuracy, the confusion matrix, and false gestures on gesture-free regions
+// (random patches of held-out scenes) with and without the rejection class.
 
 #include <chrono>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <set>
@@ -13,6 +16,7 @@
 
 #include "biovision_common/tool_options.hpp"
 #include "biovision_hri/gesture_recognizer.hpp"
+#include "biovision_hri/hand_posture_classifier.hpp"
 #include "hri_datasets.hpp"
 
 using namespace biovision_hri;
@@ -24,8 +28,10 @@ int main(int argc, char** argv)
   int rejection = 100, free_regions = 200, seed = 3;
   bool validation = false;
   GestureRecognizer::Parameters p;
+  HandPostureClassifier::Parameters posture;
   biovision_common::ToolOptions options("gesture_eval",
-                                        "Evaluates gesture recognition by V1 keypoint templates on held-out frames "
+                                        "Evaluates gesture recognition (V1 keypoint templates, hand posture SVMs, "
+                                        "both) on held-out frames "
                                         "(LinTO: later session;\nTriesch: other people), with false gestures on "
                                         "gesture-free regions of held-out scenes.");
   CLI::App& app = options.app();
@@ -40,6 +46,10 @@ int main(int argc, char** argv)
   app.add_option("--max-distance", p.max_distance, "Hamming radius [bits] (thesis: < 30)");
   app.add_option("--min-matches", p.min_matches,
                  "verified matches for a gesture (thesis: >= 4; default chosen on validation)");
+  app.add_option("--posture-C", posture.C, "hand posture SVMs: soft-margin cost");
+  app.add_option("--posture-rotation", posture.rotation, "hand posture SVMs: augmentation rotation [deg]");
+  app.add_option("--posture-margin", posture.margin, "hand posture SVMs: context around the box");
+  app.add_option("--posture-min-score", posture.min_score, "hand posture SVMs: score needed for a gesture");
   app.add_option("--seed", seed, "seed of the random patches");
   app.add_option("--validation", validation,
                  "for parameter choices: split the template part itself (first half of its people / frames "
@@ -92,23 +102,17 @@ int main(int argc, char** argv)
     const auto free_patches = randomScenePatches(test_scenes, free_regions, rng, free_side, free_side * 5 / 2);
 
     nlohmann::ordered_json runs = nlohmann::ordered_json::object(), confusions = nlohmann::ordered_json::object();
-    for (const bool with_rejection : {false, true})
-    {
-      GestureRecognizer recognizer(descriptor, p);
-      std::set<std::string> labels;
-      int templates = 0;
-      for (const auto& g : samples)
-        if (g.template_part)
-        {
-          cv::Rect box;
-          const cv::Mat image = load(g, box);
-          recognizer.addTemplate(image, box, g.label);
-          labels.insert(g.label);
-          ++templates;
-        }
-      if (with_rejection)
-        for (const cv::Mat& patch : rejection_patches)
-          recognizer.addTemplate(patch, cv::Rect(0, 0, patch.cols, patch.rows), "none");
+    std::set<std::string> labels;
+    int templates = 0;
+    for (const auto& g : samples)
+      if (g.template_part)
+      {
+        labels.insert(g.label);
+        ++templates;
+      }
+    // Runs one method on the tested regions and the gesture-free regions.
+    using Classify = std::function<GestureResult(const cv::Mat&, const cv::Rect&)>;
+    auto evaluate = [&](const std::string& method, const std::string& run, const Classify& classify) {
       std::map<std::string, std::map<std::string, int>> confusion;
       int correct = 0, tested = 0, unrecognised = 0;
       std::vector<double> ms;
@@ -119,7 +123,7 @@ int main(int argc, char** argv)
         cv::Rect box;
         const cv::Mat image = load(g, box);
         const auto t0 = std::chrono::steady_clock::now();
-        const GestureResult r = recognizer.recognize(image, {box}).front();
+        const GestureResult r = classify(image, box);
         ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
         const std::string predicted = r.label.empty() ? "(none)" : r.label;
         ++confusion[g.label][predicted];
@@ -129,25 +133,58 @@ int main(int argc, char** argv)
       }
       int false_gestures = 0;
       for (const cv::Mat& patch : free_patches)
-        false_gestures += !recognizer.recognize(patch, {cv::Rect(0, 0, patch.cols, patch.rows)}).front().label.empty();
+        false_gestures += !classify(patch, cv::Rect(0, 0, patch.cols, patch.rows)).label.empty();
       std::sort(ms.begin(), ms.end());
       const double accuracy = tested ? static_cast<double>(correct) / tested : 0.0;
       const double false_rate = free_patches.empty() ? 0.0 : static_cast<double>(false_gestures) / free_patches.size();
-      const std::string run = with_rejection ? "with_rejection_class" : "without_rejection_class";
-      confusions[run] = confusion;
-      runs[run] = {{"labels", labels.size()},
-                   {"templates", templates},
-                   {"rejection_templates", with_rejection ? rejection : 0},
-                   {"tested", tested},
-                   {"accuracy", accuracy},
-                   {"no_gesture_on_gesture_frames", tested ? static_cast<double>(unrecognised) / tested : 0.0},
-                   {"gesture_free_regions", free_patches.size()},
-                   {"false_gesture_rate", false_rate},
-                   {"median_ms_per_region", ms.empty() ? 0.0 : ms[ms.size() / 2]}};
-      std::cerr << "gesture_eval: " << set << (with_rejection ? " with" : " without") << " rejection class: accuracy "
-                << accuracy << " (" << correct << "/" << tested << "), false gestures on " << free_patches.size()
-                << " gesture-free regions " << false_rate << ", "
+      const bool with_rejection = run == "with_rejection_class";
+      confusions[method][run] = confusion;
+      runs[method][run] = {{"labels", labels.size()},
+                           {"templates", templates},
+                           {"rejection_templates", with_rejection ? rejection : 0},
+                           {"tested", tested},
+                           {"accuracy", accuracy},
+                           {"no_gesture_on_gesture_frames", tested ? static_cast<double>(unrecognised) / tested : 0.0},
+                           {"gesture_free_regions", free_patches.size()},
+                           {"false_gesture_rate", false_rate},
+                           {"median_ms_per_region", ms.empty() ? 0.0 : ms[ms.size() / 2]}};
+      std::cerr << "gesture_eval: " << set << " " << method << (with_rejection ? " with" : " without")
+                << " rejection class: accuracy " << accuracy << " (" << correct << "/" << tested
+                << "), false gestures on " << free_patches.size() << " gesture-free regions " << false_rate << ", "
                 << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s\n";
+    };
+    for (const bool with_rejection : {false, true})
+    {
+      const std::string run = with_rejection ? "with_rejection_class" : "without_rejection_class";
+      GestureRecognizer recognizer(descriptor, p);
+      HandPostureClassifier classifier{FeatureLayout(), posture};
+      for (const auto& g : samples)
+        if (g.template_part)
+        {
+          cv::Rect box;
+          const cv::Mat image = load(g, box);
+          recognizer.addTemplate(image, box, g.label);
+          classifier.addExample(image, box, g.label);
+        }
+      if (with_rejection)
+        for (const cv::Mat& patch : rejection_patches)
+        {
+          recognizer.addTemplate(patch, cv::Rect(0, 0, patch.cols, patch.rows), "none");
+          classifier.addExample(patch, cv::Rect(0, 0, patch.cols, patch.rows), "none");
+        }
+      classifier.train();
+      auto keypoints = [&](const cv::Mat& image, const cv::Rect& box) {
+        return recognizer.recognize(image, {box}).front();
+      };
+      auto appearance = [&](const cv::Mat& image, const cv::Rect& box) {
+        return classifier.classify(image, {box}).front();
+      };
+      evaluate("keypoints", run, keypoints);
+      evaluate("posture_svm", run, appearance);
+      evaluate("keypoints_then_posture_svm", run, [&](const cv::Mat& image, const cv::Rect& box) {
+        const GestureResult k = keypoints(image, box);
+        return k.label.empty() ? appearance(image, box) : k;
+      });
     }
     if (!json_path.empty())
     {
@@ -161,6 +198,11 @@ int main(int argc, char** argv)
       doc["hand_regions"] = "annotated boxes (LinTO) / whole crops padded by 20 px (Triesch)";
       doc["max_distance"] = p.max_distance;
       doc["min_matches"] = p.min_matches;
+      doc["posture_svm"] = {{"C", posture.C},
+                            {"rotation_deg", posture.rotation},
+                            {"mirror", posture.mirror},
+                            {"margin", posture.margin},
+                            {"min_score", posture.min_score}};
       doc["runs"] = runs;
       doc["confusion"] = confusions;
       doc["notes"] = std::string("Held out: ") + doc["split"].get<std::string>() +

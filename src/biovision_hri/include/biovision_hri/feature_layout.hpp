@@ -1,5 +1,11 @@
 #pragma once
 
+namespace biovision_common
+{
+class PayloadReader;
+class PayloadWriter;
+}  // namespace biovision_common
+
 namespace biovision_hri
 {
 /// Layout of the HOG-like window descriptor on V1 complex cells (thesis §2.3, L376-L390). It belongs to a
@@ -45,6 +51,10 @@ struct FeatureLayout
 
   /// Throws std::invalid_argument naming the offending field and its range.
   void validate() const;
+  /// The fields in the stored models' order (LinearDetectorModel, HandPostureClassifier).
+  void write(biovision_common::PayloadWriter& writer) const;
+  /// Reads what write() wrote; throws what the reader throws (short payload) or validate() throws.
+  static FeatureLayout read(biovision_common::PayloadReader& reader);
   /// Channels of one block: block_cells^2 * orientations (32 for the thesis layout).
   int blockLength() const { return block_cells * block_cells * orientations; }
   /// Values per window: window_blocks^2 * blockLength() (1152 for the thesis layout).

@@ -1,0 +1,222 @@
+#include <fstream>
+#include <functional>
+#include <iterator>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "biovision_common/payload_reader.hpp"
+#include "biovision_common/payload_writer.hpp"
+#include "biovision_common/stored_file.hpp"
+#include "biovision_hri/hand_posture_classifier.hpp"
+
+using namespace biovision_hri;
+
+namespace
+{
+/// A synthetic posture: a bright "palm" disc with `fingers` bars at fixed angles (distinct shapes).
+cv::Mat posture(int size, int fingers)
+{
+  cv::Mat img(size, size, CV_32F, cv::Scalar(0.3));
+  const cv::Point c(size / 2, size * 3 / 5);
+  cv::circle(img, c, size / 5, 0.85, cv::FILLED);
+  for (int f = 0; f < fingers; ++f)
+  {
+    const double a = (-60.0 + 120.0 * f / std::max(1, fingers - 1)) * CV_PI / 180.0;
+    const cv::Point tip(c.x + static_cast<int>(size * 0.42 * std::sin(a)),
+                        c.y - static_cast<int>(size * 0.5 * std::cos(a)));
+    cv::line(img, c, tip, 0.85, size / 12);
+  }
+  cv::GaussianBlur(img, img, cv::Size(), 1.0);
+  return img;
+}
+
+cv::Mat texture(int w, int h, unsigned seed)
+{
+  cv::Mat n(h, w, CV_32F);
+  cv::RNG rng(seed);
+  rng.fill(n, cv::RNG::NORMAL, 0.5, 0.2);
+  cv::GaussianBlur(n, n, cv::Size(), 2.0);
+  cv::normalize(n, n, 0.1, 0.9, cv::NORM_MINMAX);
+  return n;
+}
+
+/// The posture rotated and scaled about its centre, pasted at `at` into a 320x240 textured scene.
+cv::Mat scene(const cv::Mat& object, double degrees, double scale, cv::Point at, cv::Rect* where)
+{
+  cv::Mat out = texture(320, 240, 7);
+  const int side = cvRound(object.cols * scale);
+  const cv::Point2f c(object.cols / 2.f, object.rows / 2.f);
+  cv::Mat m = cv::getRotationMatrix2D(c, degrees, scale);
+  m.at<double>(0, 2) += side / 2.0 - c.x;
+  m.at<double>(1, 2) += side / 2.0 - c.y;
+  cv::Mat warped;
+  cv::warpAffine(object, warped, m, cv::Size(side, side), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+  *where = cv::Rect(at.x, at.y, side, side);
+  warped.copyTo(out(*where));
+  return out;
+}
+
+HandPostureClassifier trained()
+{
+  HandPostureClassifier c{FeatureLayout(), HandPostureClassifier::Parameters()};
+  for (int fingers : {1, 2, 5})
+    for (double scale : {0.9, 1.1})
+    {
+      cv::Rect box;
+      const cv::Mat s = scene(posture(90, fingers), 0.0, scale, {40, 40}, &box);
+      c.addExample(s, box, "f" + std::to_string(fingers));
+    }
+  for (unsigned seed = 0; seed < 12; ++seed)
+  {
+    const cv::Mat t = texture(90, 90, 100 + seed);
+    c.addExample(t, cv::Rect(0, 0, 90, 90), "none");
+  }
+  c.train();
+  return c;
+}
+}  // namespace
+
+TEST(HandPostureClassifier, RecognisesEachPostureRotatedScaledAndMovedAndRejectsTexture)
+{
+  HandPostureClassifier c = trained();
+  ASSERT_EQ(c.labels(), (std::vector<std::string>{"f1", "f2", "f5", "none"}));
+  // 6 regions x 3 rotations x 2 mirrors + 12 textures x 6.
+  EXPECT_EQ(c.exampleCount(), 6u * 6u + 12u * 6u);
+  for (int fingers : {1, 2, 5})
+    for (const auto& [degrees, scale] :
+         std::vector<std::pair<double, double>>{{0, 1.0}, {10, 1.0}, {-8, 1.25}, {5, 0.8}})
+    {
+      cv::Rect box;
+      const cv::Mat s = scene(posture(90, fingers), degrees, scale, {170, 90}, &box);
+      const GestureResult r = c.classify(s, {box}).front();
+      EXPECT_EQ(r.label, "f" + std::to_string(fingers)) << degrees << " deg, scale " << scale;
+      EXPECT_EQ(r.box, box);
+      EXPECT_EQ(r.matches, 0);
+    }
+  const cv::Mat other = texture(320, 240, 555);
+  const GestureResult r = c.classify(other, {cv::Rect(100, 60, 90, 90)}).front();
+  EXPECT_EQ(r.label, "");
+  EXPECT_EQ(r.best_label, "none");
+}
+
+TEST(HandPostureClassifier, MinScoreWithholdsWeakGestures)
+{
+  HandPostureClassifier c = trained();
+  cv::Rect box;
+  const cv::Mat s = scene(posture(90, 2), 0.0, 1.0, {170, 90}, &box);
+  const GestureResult r = c.classify(s, {box}).front();
+  ASSERT_EQ(r.label, "f2");
+  auto p = c.parameters();
+  p.min_score = r.score + 0.01;
+  c.setParameters(p);
+  const GestureResult withheld = c.classify(s, {box}).front();
+  EXPECT_EQ(withheld.label, "");
+  EXPECT_EQ(withheld.best_label, "f2");
+  EXPECT_DOUBLE_EQ(withheld.score, r.score);
+}
+
+TEST(HandPostureClassifier, SavedModelLoadsWithTheSameScoresAndACorruptOneIsRefused)
+{
+  HandPostureClassifier c = trained();
+  const std::string path = ::testing::TempDir() + "/posture.bin";
+  c.save(path, "test");
+  HandPostureClassifier loaded{FeatureLayout(), HandPostureClassifier::Parameters()};
+  loaded.load(path);
+  EXPECT_EQ(loaded.labels(), c.labels());
+  EXPECT_EQ(loaded.layout(), c.layout());
+  EXPECT_EQ(loaded.exampleCount(), 0u);
+  std::vector<cv::Rect> boxes;
+  cv::Rect box;
+  const cv::Mat s = scene(posture(90, 5), 7.0, 1.1, {150, 60}, &box);
+  boxes = {box, cv::Rect(0, 0, 60, 60), cv::Rect(400, 400, 20, 20)};
+  const auto a = c.classify(s, boxes), b = loaded.classify(s, boxes);
+  ASSERT_EQ(a.size(), 3u);
+  for (size_t i = 0; i < a.size(); ++i)
+  {
+    EXPECT_EQ(a[i].label, b[i].label);
+    EXPECT_EQ(a[i].best_label, b[i].best_label);
+    EXPECT_FLOAT_EQ(static_cast<float>(a[i].score), static_cast<float>(b[i].score));
+  }
+  EXPECT_EQ(a[2].best_label, "");  // outside the image: nothing to classify
+
+  std::string bytes;
+  {
+    std::ifstream in(path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  for (size_t at : {size_t{30}, bytes.size() / 2, bytes.size() - 1})
+  {
+    std::string bad = bytes;
+    bad[at] ^= 0x10;
+    std::ofstream(path, std::ios::binary) << bad;
+    EXPECT_THROW(loaded.load(path), biovision_common::StoredFileError) << "byte " << at;
+  }
+  std::ofstream(path, std::ios::binary) << bytes.substr(0, bytes.size() / 3);
+  EXPECT_THROW(loaded.load(path), biovision_common::StoredFileError);
+  // A refused file changes nothing.
+  const auto after = loaded.classify(s, boxes);
+  EXPECT_FLOAT_EQ(static_cast<float>(after[0].score), static_cast<float>(a[0].score));
+  EXPECT_THROW(loaded.load(path + ".missing"), biovision_common::StoredFileError);
+}
+
+TEST(HandPostureClassifier, CommittedModelLoads)
+{
+  HandPostureClassifier c{FeatureLayout(), HandPostureClassifier::Parameters()};
+  c.load(std::string(BIOVISION_HRI_MODELS) + "/hand_posture.bin");
+  EXPECT_GE(c.labels().size(), 5u);
+  EXPECT_NE(std::find(c.labels().begin(), c.labels().end(), "palm"), c.labels().end());
+  EXPECT_NE(std::find(c.labels().begin(), c.labels().end(), "none"), c.labels().end());
+}
+
+TEST(HandPostureClassifier, RefusesBadInputAndParameters)
+{
+  HandPostureClassifier c{FeatureLayout(), HandPostureClassifier::Parameters()};
+  const cv::Mat img = texture(100, 100, 1);
+  EXPECT_THROW(c.classify(img, {cv::Rect(0, 0, 50, 50)}), std::logic_error);
+  EXPECT_THROW(c.save(::testing::TempDir() + "/never.bin", ""), std::logic_error);
+  EXPECT_THROW(c.addExample(img, cv::Rect(0, 0, 50, 50), ""), std::invalid_argument);
+  EXPECT_THROW(c.addExample(img, cv::Rect(200, 200, 50, 50), "a"), std::invalid_argument);
+  EXPECT_THROW(c.addExample(cv::Mat(), cv::Rect(0, 0, 50, 50), "a"), std::invalid_argument);
+  EXPECT_THROW(c.addExample(cv::Mat(100, 100, CV_8UC1), cv::Rect(0, 0, 50, 50), "a"), std::invalid_argument);
+  c.addExample(img, cv::Rect(0, 0, 50, 50), "none");
+  EXPECT_THROW(c.train(), std::logic_error);  // one label
+  c.addExample(texture(100, 100, 2), cv::Rect(0, 0, 50, 50), "none2");
+  c.setParameters([] {
+    auto p = HandPostureClassifier::Parameters();
+    p.rejection_label = "none2";
+    return p;
+  }());
+  EXPECT_NO_THROW(c.train());  // "none" is a gesture label here
+  using Edit = std::function<void(HandPostureClassifier::Parameters&)>;
+  for (const Edit& bad : std::vector<Edit>{[](HandPostureClassifier::Parameters& p) { p.C = 0; },
+                                           [](HandPostureClassifier::Parameters& p) { p.rotation = 46; },
+                                           [](HandPostureClassifier::Parameters& p) { p.margin = -0.1; },
+                                           [](HandPostureClassifier::Parameters& p) { p.min_score = std::nan(""); }})
+  {
+    HandPostureClassifier::Parameters p;
+    bad(p);
+    EXPECT_THROW(c.setParameters(p), std::invalid_argument);
+    EXPECT_THROW((HandPostureClassifier{FeatureLayout(), p}), std::invalid_argument);
+  }
+  EXPECT_THROW(c.classify(cv::Mat(), {cv::Rect(0, 0, 5, 5)}), std::invalid_argument);
+}
+
+TEST(FeatureLayout, WriteReadRoundTripAndRefusesAnInvalidLayout)
+{
+  FeatureLayout l;
+  l.wavelength = 5.5;
+  l.cell_size = 7;
+  l.clip = 0.2;
+  l.aspect_ratio = 0.75;
+  biovision_common::PayloadWriter w;
+  l.write(w);
+  biovision_common::PayloadReader r(w.bytes());
+  EXPECT_EQ(FeatureLayout::read(r), l);
+  EXPECT_TRUE(r.atEnd());
+  l.orientations = 99;
+  biovision_common::PayloadWriter bad;
+  l.write(bad);
+  biovision_common::PayloadReader rb(bad.bytes());
+  EXPECT_THROW(FeatureLayout::read(rb), std::invalid_argument);
+}

@@ -47,12 +47,13 @@ void HriNodelet::onInitNodelet()
   it_ = std::make_unique<image_transport::ImageTransport>(nh);
 
   // Models: a missing or corrupt detector model stops the nodelet at start (it cannot detect anything);
-  // gesture templates are optional.
+  // the gesture methods are optional.
   const std::string share = ros::package::getPath("biovision_hri");
-  std::string face_model, hand_model, templates, descriptor_model;
+  std::string face_model, hand_model, templates, posture_model, descriptor_model;
   pnh.param<std::string>("face_model", face_model, share + "/models/face_detector.bin");
   pnh.param<std::string>("hand_model", hand_model, share + "/models/hand_detector.bin");
   pnh.param<std::string>("gesture_templates", templates, share + "/models/gesture_templates.bin");  // "" = off
+  pnh.param<std::string>("posture_model", posture_model, share + "/models/hand_posture.bin");       // "" = off
   pnh.param<std::string>("descriptor_model", descriptor_model,
                          ros::package::getPath("biovision_recognition") + "/models/v1_ldahash_128.bin");
   pnh.param("max_input_age", max_input_age_, 0.5);
@@ -94,6 +95,20 @@ void HriNodelet::onInitNodelet()
     {
       gestures_.reset();
       diagnostics_.health().reportError(getName(), std::string("gestures off: ") + e.what());
+    }
+  }
+  if (!posture_model.empty())
+  {
+    try
+    {
+      auto posture = std::make_unique<HandPostureClassifier>(FeatureLayout(), HandPostureClassifier::Parameters());
+      posture->load(posture_model);
+      posture_ = std::move(posture);
+      NODELET_INFO("hri: hand posture SVMs for %zu classes from %s", posture_->labels().size(), posture_model.c_str());
+    }
+    catch (const std::exception& e)
+    {
+      diagnostics_.health().reportError(getName(), std::string("posture SVMs off: ") + e.what());
     }
   }
   behaviour_ = std::make_unique<GreetBehaviour>(greet_base_);
@@ -336,7 +351,7 @@ void HriNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
         faces_msg->detections.push_back(m);
         face_boxes.push_back(scaled(d.box, 1.0 / s));
       }
-      std::vector<cv::Rect> hand_boxes;
+      std::vector<cv::Rect> hand_boxes, detected_boxes;  // enlarged for the keypoints / as detected
       for (const Detection& d : hands)
       {
         biovision_msgs::Detection m;
@@ -346,23 +361,38 @@ void HriNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
         m.score = d.score;
         m.scale = static_cast<float>(d.scale * s);
         hands_msg->detections.push_back(m);
+        detected_boxes.push_back(cv::Rect(box));
         const float g = static_cast<float>(parameters_.gesture_box_scale);
         const cv::Point2f c(box.x + box.width / 2, box.y + box.height / 2);
         hand_boxes.push_back(
             cv::Rect(cv::Rect2f(c.x - box.width * g / 2, c.y - box.height * g / 2, box.width * g, box.height * g)));
       }
       std::vector<std::string> labels;
+      // Keypoint templates first (they verify geometry); a box they leave without a gesture goes to the
+      // posture SVMs (gesture_eval's keypoints_then_posture_svm, the best on validation: README), which
+      // were trained on hand boxes as annotated, so they get the box as detected.
+      std::vector<GestureResult> results(hand_boxes.size());
       if (gestures_ && !hand_boxes.empty())
-        for (const GestureResult& g : gestures_->recognize(gray, hand_boxes))
-          if (!g.label.empty())
+        results = gestures_->recognize(gray, hand_boxes);
+      std::vector<const char*> methods(results.size(), "keypoints");
+      if (posture_)
+        for (size_t i = 0; i < results.size(); ++i)
+          if (results[i].label.empty())
           {
-            biovision_msgs::Gesture m;
-            m.label = g.label;
-            m.score = static_cast<float>(g.score);
-            m.box = toRoi(cv::Rect2f(g.box), size);
-            gestures_msg->gestures.push_back(m);
-            labels.push_back(g.label);
+            results[i] = posture_->classify(gray, {detected_boxes[i]}).front();
+            methods[i] = "posture_svm";
           }
+      for (size_t i = 0; i < results.size(); ++i)
+        if (const GestureResult& g = results[i]; !g.label.empty())
+        {
+          biovision_msgs::Gesture m;
+          m.label = g.label;
+          m.method = methods[i];
+          m.score = static_cast<float>(g.score);
+          m.box = toRoi(cv::Rect2f(g.box), size);
+          gestures_msg->gestures.push_back(m);
+          labels.push_back(g.label);
+        }
 
       const double t = msg->header.stamp.toSec();
       if (start_requested_)
@@ -427,6 +457,7 @@ void HriNodelet::details(diagnostic_updater::DiagnosticStatusWrapper& status)
   status.add("last hands", last_hands_);
   status.add("last gestures", last_gestures_);
   status.add("gesture templates", gestures_ ? gestures_->templates().views().size() : 0);
+  status.add("posture classes", posture_ ? posture_->labels().size() : 0);
   status.add("greet state", GreetBehaviour::name(behaviour_->state()));
   status.add("joint states received", have_joints_);
   status.add("last greeting result", last_reason_);

@@ -18,6 +18,7 @@
 
 #include "biovision_hri/gesture_recognizer.hpp"
 #include "biovision_hri/greet_behaviour.hpp"
+#include "biovision_hri/hand_posture_classifier.hpp"
 #include "biovision_hri/ros/hri_config.hpp"
 #include "biovision_hri/sliding_window_detector.hpp"
 #include "biovision_ros_common/async_service_client.hpp"
@@ -75,6 +76,7 @@ private:
   std::mutex mutex_;  // guards everything below
   std::unique_ptr<SlidingWindowDetector> face_detector_, hand_detector_;
   std::unique_ptr<GestureRecognizer> gestures_;
+  std::unique_ptr<HandPostureClassifier> posture_;
   std::unique_ptr<GreetBehaviour> behaviour_;
   GreetBehaviour::Parameters greet_base_;
   HriParameters parameters_;

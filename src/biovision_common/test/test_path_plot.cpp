@@ -84,3 +84,20 @@ int main(int argc, char** argv)
   testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();
 }
+
+TEST(PathPlot, LabelsStayInsideTheImageAndOffTheTitle)
+{
+  const cv::Size image(720, 560), text(60, 10);
+  // Room on the right and above: right of and above the mark.
+  EXPECT_EQ(PathPlot::labelOrigin({100, 300}, text, image, 24), cv::Point(108, 294));
+  // At the right edge: to the mark's left, the whole text inside.
+  const cv::Point right = PathPlot::labelOrigin({700, 300}, text, image, 24);
+  EXPECT_EQ(right.x, 700 - 8 - 60);
+  EXPECT_LE(right.x + text.width, image.width);
+  // Just below the title strip: below the mark.
+  const cv::Point high = PathPlot::labelOrigin({100, 30}, text, image, 24);
+  EXPECT_GE(high.y - text.height, 24);
+  EXPECT_GT(high.y, 30);
+  // A label wider than the room on either side starts at the left edge.
+  EXPECT_EQ(PathPlot::labelOrigin({20, 300}, cv::Size(710, 10), image, 24).x, 2);
+}

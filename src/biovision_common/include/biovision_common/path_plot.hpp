@@ -35,5 +35,10 @@ public:
   /// smaller than 64 x 64 px.
   cv::Mat render(const GridView& grid, cv::Point2d origin, const std::vector<cv::Point2d>& path,
                  const std::vector<Mark>& marks, const std::string& title, cv::Size size) const;
+
+  /// Where a mark's label of `text` px goes (putText's origin, the text's bottom left): right of and above
+  /// the mark at `mark`, moved to its left / below it where it would leave the image or cover the `top` px
+  /// title strip (a target at the map's edge kept its label cut off).
+  static cv::Point labelOrigin(cv::Point mark, cv::Size text, cv::Size image, int top);
 };
 }  // namespace biovision_common

@@ -99,7 +99,10 @@ cv::Mat PathPlot::render(const GridView& grid, cv::Point2d origin, const std::ve
       continue;
     const cv::Point p = px(m.position);
     cv::circle(image, p, 6, m.colour, m.filled ? cv::FILLED : 2, cv::LINE_8);
-    cv::putText(image, m.label, p + cv::Point(8, -6), cv::FONT_HERSHEY_SIMPLEX, 0.4, m.colour, 1, cv::LINE_AA);
+    int baseline = 0;
+    const cv::Size text = cv::getTextSize(m.label, cv::FONT_HERSHEY_SIMPLEX, 0.4, 1, &baseline);
+    cv::putText(image, m.label, labelOrigin(p, text, size, top), cv::FONT_HERSHEY_SIMPLEX, 0.4, m.colour, 1,
+                cv::LINE_AA);
   }
   // 1 m scale bar, bottom left.
   const cv::Point bar0(10, size.height - 12), bar1(10 + int(std::lround(scale)), size.height - 12);
@@ -107,5 +110,17 @@ cv::Mat PathPlot::render(const GridView& grid, cv::Point2d origin, const std::ve
   cv::putText(image, "1 m", bar1 + cv::Point(6, 4), cv::FONT_HERSHEY_SIMPLEX, 0.4, kAxis, 1, cv::LINE_AA);
   drawTitle(image, title);
   return image;
+}
+
+cv::Point PathPlot::labelOrigin(cv::Point mark, cv::Size text, cv::Size image, int top)
+{
+  constexpr int kGap = 8;  // clear of the 6 px mark
+  cv::Point o(mark.x + kGap, mark.y - 6);
+  if (o.x + text.width > image.width - 2)
+    o.x = mark.x - kGap - text.width;
+  if (o.y - text.height < top + 2)
+    o.y = mark.y + kGap + text.height;
+  o.x = std::max(o.x, 2);
+  return o;
 }
 }  // namespace biovision_common

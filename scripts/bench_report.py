@@ -106,6 +106,11 @@ def splice(folder, target):
     files = sorted(pathlib.Path(folder).glob("*.json"))
     text = pathlib.Path(target).read_text()
     head, *parts = text.split("\n## ")
+    # The header describes the full run; say so once sections from other runs (other machines) are in.
+    head = (head.replace("measured in the same run, on this machine:",
+                         "measured in the same run; the full run's machine (a spliced section names its own):")
+            .replace("\n- machine: ", "\n- machine of the full run: ")
+            .replace("\n- generated: ", "\n- full run generated: "))
     sections = {p.split("\n", 1)[0].strip(): "## " + p.rstrip("\n") + "\n" for p in parts}
     order = list(sections)
     for path in files:

@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <set>
 #include <stdexcept>
 
 #include "biovision_tasks/go_to_task.hpp"
+#include "biovision_tasks/greet_task.hpp"
 #include "biovision_tasks/macro_task.hpp"
 #include "biovision_tasks/search_task.hpp"
 #include "biovision_tasks/turn_task.hpp"
@@ -31,6 +34,8 @@ std::unique_ptr<Task> TaskManager::build(const TaskSpec& spec) const
     return std::make_unique<WaitTask>(t, spec.duration, "explore");
   if (t == "turn")
     return std::make_unique<TurnTask>(spec.angle, 0.1, timeout(60.0));
+  if (t == "greet")
+    return std::make_unique<GreetTask>(spec.displayName(), timeout(parameters_.greet_timeout));
   if (t == "search" || t == "explore")
     return std::make_unique<SearchTask>(spec.object, spec.duration, record_, parameters_,
                                         timeout(t == "search" ? parameters_.search_timeout : 0.0));
@@ -89,20 +94,18 @@ void TaskManager::finish(size_t index, double time)
   Entry e = std::move(buffer_[index]);
   buffer_.erase(buffer_.begin() + static_cast<long>(index));
   finished_.push_back({e.id, e.task->name(), e.task->state(), e.task->reason(), e.task->startTime(), time});
+  if (const auto* greet = dynamic_cast<const GreetTask*>(e.task.get()))
+  {
+    greet_ready_time_ = time + parameters_.greet_cooldown;
+    if (greet->state() == TaskState::Succeeded)
+      runGestureAction(greet->action(), e.spec.priority, time);
+  }
   if (e.task->state() != TaskState::Failed || e.spec.on_failure == "continue")
     return;
   const std::string why = "'" + e.task->name() + "' failed: " + e.task->reason();
   cancelAll("cancelled because " + why);
   // The fallback replaces the rest of the plan (e.g. search failed → return home).
-  for (size_t i = 0; i < buffer_.size();)
-    if (isFinished(buffer_[i].task->state()))
-    {
-      Entry c = std::move(buffer_[i]);
-      buffer_.erase(buffer_.begin() + static_cast<long>(i));
-      finished_.push_back({c.id, c.task->name(), c.task->state(), c.task->reason(), c.task->startTime(), time});
-    }
-    else
-      ++i;
+  dropFinished(time);
   if (e.spec.on_failure != "abort")
   {
     TaskSpec fallback;
@@ -119,6 +122,71 @@ void TaskManager::finish(size_t index, double time)
       // e.g. on_failure: go_to without a place: nothing to fall back to; the rest is already cancelled.
     }
   }
+}
+
+void TaskManager::dropFinished(double time)
+{
+  for (size_t i = 0; i < buffer_.size();)
+    if (isFinished(buffer_[i].task->state()))
+    {
+      Entry c = std::move(buffer_[i]);
+      buffer_.erase(buffer_.begin() + static_cast<long>(i));
+      finished_.push_back({c.id, c.task->name(), c.task->state(), c.task->reason(), c.task->startTime(), time});
+    }
+    else
+      ++i;
+}
+
+void TaskManager::runGestureAction(const std::string& action, int priority, double time)
+{
+  // Actions that are tasks without arguments replace the plan; "continue" and anything else (e.g.
+  // biovision_hri's "follow", which needs a person tracker) let the interrupted tasks go on.
+  static const std::set<std::string> kReplacing = {"stop", "wait", "look_ahead", "look_around", "return_home"};
+  std::string& note = finished_.back().reason;  // the greet's entry (set before dropFinished() adds more)
+  if (!kReplacing.count(action))
+  {
+    note = "gesture action '" + action + "'" + (action == "continue" ? std::string() : " is no task the manager runs") +
+           ": the interrupted tasks go on";
+    return;
+  }
+  note = "gesture action '" + action + "' replaces the plan";
+  cancelAll("replaced by the gesture action '" + action + "'");
+  dropFinished(time);
+  TaskSpec s;
+  s.type = action;
+  s.priority = priority;
+  add(s);
+}
+
+bool TaskManager::obstacleInFront(const Percept& p) const
+{
+  const OccupancyMap& m = p.map;
+  const double r = parameters_.greet_distance, cell = m.cellSize();
+  if (m.empty() || r <= 0)
+    return false;
+  const int c0 = std::max(0, int(std::floor((p.pose.x - r - m.originX()) / cell)));
+  const int c1 = std::min(m.cells().cols - 1, int(std::floor((p.pose.x + r - m.originX()) / cell)));
+  const int r0 = std::max(0, int(std::floor((p.pose.y - r - m.originY()) / cell)));
+  const int r1 = std::min(m.cells().rows - 1, int(std::floor((p.pose.y + r - m.originY()) / cell)));
+  for (int row = r0; row <= r1; ++row)
+    for (int col = c0; col <= c1; ++col)
+    {
+      const unsigned char v = m.cells()(row, col);
+      if (v == OccupancyMap::kUnknown || v < parameters_.occupied_threshold)
+        continue;
+      const cv::Point2d c = m.centreOf(row, col);
+      const double dx = c.x - p.pose.x, dy = c.y - p.pose.y;
+      const double bearing = std::remainder(std::atan2(dy, dx) - p.pose.yaw, 2 * M_PI);
+      if (std::hypot(dx, dy) <= r && std::abs(bearing) <= TaskParameters::kGreetCone)
+        return true;
+    }
+  return false;
+}
+
+bool TaskManager::greetBuffered() const
+{
+  return std::any_of(buffer_.begin(), buffer_.end(),
+                     [](const Entry& e) { return dynamic_cast<const GreetTask*>(e.task.get()) != nullptr; });
 }
 
 MotorCommand TaskManager::step(const Percept& input)
@@ -147,6 +215,17 @@ MotorCommand TaskManager::step(const Percept& input)
     have_last_pose_ = true;
   }
   last_time_ = percept.time;
+
+  // Thesis §2.1: an obstacle in front while driving may be a person: greet it above the active task.
+  if (driving_ && percept.pose_valid && !buffer_.empty() && percept.time >= greet_ready_time_ && !greetBuffered() &&
+      obstacleInFront(percept))
+  {
+    TaskSpec greet;
+    greet.type = "greet";
+    greet.name = "greet (obstacle in front)";
+    greet.priority = buffer_.front().spec.priority + 1;
+    add(greet);
+  }
 
   // Concurrent tasks run their detection and conclusion from the start; the visuomotor head is started.
   for (auto& e : buffer_)
@@ -213,6 +292,7 @@ void TaskManager::reset()
   *record_ = MissionRecord();
   have_last_pose_ = false;
   driving_ = false;
+  greet_ready_time_ = -std::numeric_limits<double>::infinity();
 }
 
 TaskManager::Status TaskManager::status() const

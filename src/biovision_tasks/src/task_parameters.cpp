@@ -45,6 +45,9 @@ void TaskParameters::validate() const
   check("confirm_time", confirm_time, 0.1, 60.0);
   check("search_timeout", search_timeout, 1.0, 36000.0);
   check("go_to_timeout", go_to_timeout, 1.0, 36000.0);
+  check("greet_timeout", greet_timeout, 1.0, 600.0);
+  check("greet_distance", greet_distance, 0.0, 5.0);
+  check("greet_cooldown", greet_cooldown, 0.0, 3600.0);
 }
 
 const std::vector<std::pair<std::string, double TaskParameters::*>>& TaskParameters::namedDoubles()
@@ -73,6 +76,9 @@ const std::vector<std::pair<std::string, double TaskParameters::*>>& TaskParamet
       {"confirm_time", &TaskParameters::confirm_time},
       {"search_timeout", &TaskParameters::search_timeout},
       {"go_to_timeout", &TaskParameters::go_to_timeout},
+      {"greet_timeout", &TaskParameters::greet_timeout},
+      {"greet_distance", &TaskParameters::greet_distance},
+      {"greet_cooldown", &TaskParameters::greet_cooldown},
   };
   return fields;
 }

@@ -13,7 +13,7 @@ namespace biovision_tasks
 namespace
 {
 const std::set<std::string> kTypes = {"turn",   "forward", "wait",  "stop",        "look_ahead", "look_around",
-                                      "search", "explore", "go_to", "return_home", "sequence"};
+                                      "search", "explore", "go_to", "return_home", "greet",      "sequence"};
 const std::set<std::string> kKeys = {"type",     "task",       "name",     "object",     "x",
                                      "y",        "distance",   "angle",    "duration",   "timeout",
                                      "priority", "concurrent", "optional", "on_failure", "steps"};
@@ -89,7 +89,7 @@ void TaskSpec::validate() const
   if (!kTypes.count(type))
     throw std::invalid_argument("unknown task type '" + type +
                                 "' (turn, forward, wait, stop, look_ahead, look_around, search, explore, go_to, "
-                                "return_home, sequence)");
+                                "return_home, greet, sequence)");
   for (double v : {x, y, distance, angle, duration, timeout})
     if (!std::isfinite(v))
       throw std::invalid_argument(type + ": non-finite value");

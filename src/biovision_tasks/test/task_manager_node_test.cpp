@@ -1,5 +1,6 @@
 // The task_manager node on a real roscore: the tasks/execute action (success, failure with a reason,
-// refusal of a bad task, preemption), the base goal it publishes, tasks/status, tasks/cancel, diagnostics.
+// refusal of a bad task, preemption), the base goal it publishes, tasks/status, tasks/cancel, diagnostics,
+// and a greet through biovision_hri's services and action topic (the test stands in for the hri node).
 #include <actionlib/client/simple_action_client.h>
 #include <biovision_msgs/ExecuteTaskAction.h>
 #include <biovision_msgs/SetHeadMode.h>
@@ -7,6 +8,7 @@
 #include <geometry_msgs/PoseStamped.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
+#include <std_msgs/String.h>
 #include <std_srvs/Trigger.h>
 #include <ros/callback_queue.h>
 
@@ -155,6 +157,51 @@ TEST(TaskManagerNode, ALateStopAnswerDoesNotCountForALaterStop)
   EXPECT_TRUE(waitFor([&] { return stops >= before + 1; }, 8)) << "the second stop never called base/stop";
   client.cancelGoal();
   server_spinner.stop();
+}
+
+// A greet calls hri/greet, ends on the hri/action published after it and then calls hri/stop_greet; the
+// action's result names the gesture action.
+TEST(TaskManagerNode, AGreetCallsTheHriNodeAndEndsOnItsGestureAction)
+{
+  ros::NodeHandle nh;
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  std::atomic<int> greets{0}, stops{0};
+  ros::ServiceServer greet = nh.advertiseService<std_srvs::Trigger::Request, std_srvs::Trigger::Response>(
+      "hri/greet", [&](std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+        ++greets;
+        res.success = true;
+        res.message = "greeting";
+        return true;
+      });
+  ros::ServiceServer stop = nh.advertiseService<std_srvs::Trigger::Request, std_srvs::Trigger::Response>(
+      "hri/stop_greet", [&](std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+        ++stops;
+        res.success = true;
+        return true;
+      });
+  ros::Publisher action = nh.advertise<std_msgs::String>("hri/action", 5);
+  DiagnosticsWatch diagnostics(nh, "Task manager");
+  Client client(nh, "tasks/execute", false);
+  ASSERT_TRUE(client.waitForServer(ros::Duration(30)));
+
+  client.sendGoal(goal("greet", {"timeout=30"}));
+  ASSERT_TRUE(waitFor([&] { return greets >= 1; }, 10)) << "hri/greet was not called";
+  EXPECT_FALSE(client.waitForResult(ros::Duration(0.5))) << "the greet ended before any gesture";
+  std_msgs::String m;
+  m.data = "continue";
+  ASSERT_TRUE(waitFor(
+      [&] {
+        action.publish(m);
+        return client.waitForResult(ros::Duration(0.2));
+      },
+      10));
+  EXPECT_EQ(client.getState(), actionlib::SimpleClientGoalState::SUCCEEDED);
+  EXPECT_NE(client.getResult()->message.find("gesture action 'continue'"), std::string::npos)
+      << client.getResult()->message;
+  EXPECT_TRUE(waitFor([&] { return stops >= 1; }, 10)) << "hri/stop_greet was not called after the greet";
+  EXPECT_EQ(greets, 1) << "one greet, one call";
+  EXPECT_TRUE(waitFor([&] { return diagnostics.lastValue("last gesture action") == "continue"; }, 10));
 }
 
 int main(int argc, char** argv)

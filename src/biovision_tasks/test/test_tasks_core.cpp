@@ -1013,3 +1013,128 @@ int main(int argc, char** argv)
   testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();
 }
+
+namespace
+{
+Percept withAction(Percept p, const std::string& action, double when)
+{
+  p.gesture_action = action;
+  p.gesture_action_time = when;
+  return p;
+}
+}  // namespace
+
+TEST(GreetTask, AsksForAGreetingWithTheBaseStillAndSucceedsOnAnActionThatCameAfterItsStart)
+{
+  TaskManager m;
+  m.add(spec("greet timeout=20"));
+  const MotorCommand c = m.step(withAction(at(10), "stop", 5.0));  // an old action: not this greeting's
+  EXPECT_TRUE(c.greet);
+  EXPECT_EQ(c.base, MotorCommand::Base::Stop);
+  EXPECT_EQ(c.head_mode, "");  // the HRI behaviour holds the head
+  EXPECT_FALSE(m.idle());
+  m.step(withAction(at(12), "continue", 11.5));
+  EXPECT_TRUE(m.idle());
+  EXPECT_EQ(m.finished().back().state, TaskState::Succeeded);
+  EXPECT_EQ(m.finished().back().reason, "gesture action 'continue': the interrupted tasks go on");
+  EXPECT_FALSE(m.step(at(13)).greet);
+}
+
+TEST(GreetTask, FailsAtItsTimeOutSayingWhyAndTheDefaultTimeOutIsTheParameter)
+{
+  TaskParameters p;
+  p.greet_timeout = 7;
+  TaskManager m(p);
+  m.add(spec("greet"));
+  m.step(at(0));
+  m.step(at(6.9));
+  EXPECT_FALSE(m.idle());
+  m.step(at(7.1));
+  ASSERT_TRUE(m.idle());
+  EXPECT_EQ(m.finished().back().state, TaskState::Failed);
+  EXPECT_EQ(m.finished().back().reason, "no gesture read in 7 s (nobody there, no face found or no known gesture)");
+}
+
+TEST(TaskManager, AGestureActionThatIsATaskReplacesThePlanAndOthersLetItGoOn)
+{
+  {  // return_home replaces the rest of the mission
+    TaskManager m;
+    m.add(spec("go_to x=4 y=0"));
+    m.add(spec("greet priority=1"));
+    m.add(spec("wait duration=100"));
+    m.step(at(0, 0, 0));
+    m.step(withAction(at(1, 2, 0), "return_home", 0.9));
+    EXPECT_EQ(m.status().macro_task, "return_home");
+    const MotorCommand c = m.step(at(1.2, 2, 0));
+    EXPECT_EQ(c.base, MotorCommand::Base::Goal);
+    EXPECT_NEAR(c.goal_x, 0.0, 1e-9);
+    ASSERT_GE(m.finished().size(), 3u);
+    EXPECT_EQ(m.finished()[0].name, "greet");
+    EXPECT_EQ(m.finished()[0].reason, "gesture action 'return_home' replaces the plan");
+    EXPECT_EQ(m.finished()[1].state, TaskState::Cancelled);
+    EXPECT_EQ(m.finished()[1].reason, "replaced by the gesture action 'return_home'");
+  }
+  {  // stop: nothing is left, the base stands
+    TaskManager m;
+    m.add(spec("go_to x=4 y=0"));
+    m.add(spec("greet priority=1"));
+    m.step(at(0));
+    EXPECT_EQ(m.step(withAction(at(1), "stop", 0.5)).base, MotorCommand::Base::Stop);
+    EXPECT_TRUE(m.idle());
+    EXPECT_EQ(m.finished().back().state, TaskState::Succeeded);  // the stop task itself
+  }
+  {  // follow is no task here: the interrupted go_to resumes
+    TaskManager m;
+    m.add(spec("go_to x=4 y=0"));
+    m.add(spec("greet priority=1"));
+    m.step(at(0));
+    const MotorCommand c = m.step(withAction(at(1), "follow", 0.5));
+    EXPECT_EQ(m.finished().back().reason,
+              "gesture action 'follow' is no task the manager runs: the interrupted tasks go on");
+    EXPECT_EQ(c.base, MotorCommand::Base::Goal);
+    EXPECT_NEAR(c.goal_x, 4.0, 1e-9);
+  }
+}
+
+TEST(TaskManager, AnObstacleInFrontWhileDrivingStartsOneGreetThenTheCooldownHoldsTheNext)
+{
+  // The wall of wallMap() runs along x = 1.0-1.2; the robot drives towards it along y = 0.
+  TaskParameters p;
+  p.greet_distance = 0.8;
+  p.greet_cooldown = 30;
+  p.greet_timeout = 5;
+  TaskManager m(p);
+  m.add(spec("go_to x=4 y=0"));
+  auto near = [&](double t, double x, double yaw) {
+    Percept q = at(t, x, 0, yaw);
+    q.map = wallMap();
+    return q;
+  };
+  EXPECT_EQ(m.step(near(0, -2, 0)).base, MotorCommand::Base::Goal);  // 3 m away: drives
+  EXPECT_FALSE(m.step(near(1, -2, 0)).greet);
+  const MotorCommand c = m.step(near(2, 0.5, 0));  // 0.5 m before the wall, facing it
+  EXPECT_EQ(m.status().macro_task, "greet (obstacle in front)");
+  EXPECT_TRUE(c.greet);
+  EXPECT_EQ(c.base, MotorCommand::Base::Stop);
+  m.step(near(8, 0.5, 0));  // nobody answered: the greet fails, the go_to resumes ...
+  EXPECT_EQ(m.finished().back().state, TaskState::Failed);
+  const MotorCommand resumed = m.step(near(8.2, 0.5, 0));
+  EXPECT_EQ(m.status().macro_task, "go_to (4, 0)");
+  EXPECT_FALSE(resumed.greet);
+  m.step(near(20, 0.5, 0));  // ... and the same wall starts no greet within the cooldown
+  EXPECT_EQ(m.status().macro_task, "go_to (4, 0)");
+  m.step(near(39, 0.5, 0));  // after it, it does
+  EXPECT_EQ(m.status().macro_task, "greet (obstacle in front)");
+
+  TaskManager sideways(p);  // the wall beside the robot is not in front
+  sideways.add(spec("go_to x=4 y=0"));
+  sideways.step(near(0, 0.5, M_PI / 2));
+  sideways.step(near(1, 0.5, M_PI / 2));
+  EXPECT_NE(sideways.status().macro_task, "greet (obstacle in front)");
+
+  TaskManager off;  // greet_distance 0 (the default): never
+  off.add(spec("go_to x=4 y=0"));
+  off.step(near(0, 0.5, 0));
+  off.step(near(1, 0.5, 0));
+  EXPECT_EQ(off.status().macro_task, "go_to (4, 0)");
+}

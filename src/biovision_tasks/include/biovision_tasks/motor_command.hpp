@@ -25,5 +25,9 @@ struct MotorCommand
 
   /// Navigation mode (thesis §5.3.3): "exploration" (unknown area) or "excursion" (planned over the LTM).
   std::string mode;
+
+  /// Ask biovision_hri to look up, centre a face and read a gesture (hri/greet; thesis §2.1); the node
+  /// calls hri/stop_greet when it turns false again. The HRI behaviour holds the head meanwhile.
+  bool greet = false;
 };
 }  // namespace biovision_tasks

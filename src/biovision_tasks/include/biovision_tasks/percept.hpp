@@ -35,5 +35,9 @@ struct Percept
   OccupancyMap map;                ///< the long-term memory's obstacles (memory/ltm); empty when unknown
   bool base_trapped = false;       ///< the base controller reports no progress (its trap detector)
   bool base_fault = false;         ///< the base stopped itself: watchdog, bumper, stall
+  /// The HRI greet behaviour's last action (biovision_hri's hri/action: the recognised gesture's entry in
+  /// its `actions` table, e.g. "stop", "return_home") and when it came [s]; "" and -inf before any.
+  std::string gesture_action;
+  double gesture_action_time = -std::numeric_limits<double>::infinity();
 };
 }  // namespace biovision_tasks

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -73,6 +74,15 @@ private:
     long order;
   };
   void finish(size_t index, double time);
+  /// Moves the buffer's finished tasks to finished_.
+  void dropFinished(double time);
+  /// After a successful greet: an action that is a task without arguments (stop, wait, look_ahead,
+  /// look_around, return_home) cancels the plan and runs instead; others let it go on (noted in the
+  /// greet's Finished reason).
+  void runGestureAction(const std::string& action, int priority, double time);
+  /// An LTM obstacle within greet_distance and kGreetCone in front of the robot.
+  bool obstacleInFront(const Percept& percept) const;
+  bool greetBuffered() const;
   void sortVisuomotor();
 
   TaskParameters parameters_;
@@ -87,5 +97,6 @@ private:
   Percept::Pose progress_pose_;  ///< where the robot was when it last made progress
   double progress_time_ = 0;     ///< [s] and when
   double last_time_ = 0;
+  double greet_ready_time_ = -std::numeric_limits<double>::infinity();  ///< [s] obstacles may start a greet from then
 };
 }  // namespace biovision_tasks

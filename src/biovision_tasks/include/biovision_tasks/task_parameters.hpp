@@ -58,7 +58,17 @@ struct TaskParameters
   double confirm_time = 10.0;  ///< [s] the second sighting comes at most this long after the first
   /// [s] default time-out of `search` (mission_eval tune seeds 101-300: 240 / 300 / 360 s completed 177 / 185 / 185)
   double search_timeout = 300.0;
-  double go_to_timeout = 240.0;  ///< [s] default time-out of `go_to` and `return_home`
+  /// [s] default time-out of `greet`: the HRI behaviour's face search (8 s), centring and gesture wait
+  /// (15 s) fit in it (biovision_hri's defaults).
+  double greet_timeout = 30.0;
+  /// [m] an LTM obstacle this near in front (within +-kGreetCone of the heading) while the base drives
+  /// starts a `greet` above the active task, which resumes afterwards (thesis §2.1: an obstacle in front
+  /// may be a person); 0 = never (the default: the find-and-return mission has nobody to meet).
+  double greet_distance = 0.0;
+  /// [s] after a greet ends, obstacles in front start none for this long (a wall stays in front).
+  double greet_cooldown = 60.0;
+  static constexpr double kGreetCone = 0.35;  ///< [rad] half-angle of "in front"
+  double go_to_timeout = 240.0;               ///< [s] default time-out of `go_to` and `return_home`
 
   /// Throws std::invalid_argument naming the field and its range.
   void validate() const;

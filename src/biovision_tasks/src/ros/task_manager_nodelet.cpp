@@ -87,10 +87,15 @@ void TaskManagerNodelet::onInit()
   ltm_sub_ = nh.subscribe("memory/ltm", 1, &TaskManagerNodelet::onLtm, this);
   items_sub_ = nh.subscribe("memory/ltm_items", 1, &TaskManagerNodelet::onLtmItems, this);
   base_sub_ = nh.subscribe("attractor/base", 5, &TaskManagerNodelet::onBaseState, this);
+  gesture_action_sub_ = nh.subscribe("hri/action", 5, &TaskManagerNodelet::onGestureAction, this);
   head_mode_client_ = std::make_unique<biovision_ros_common::AsyncServiceClient<biovision_msgs::SetHeadMode>>(
       nh, "head/set_mode", service_timeout);
   base_stop_client_ = std::make_unique<biovision_ros_common::AsyncServiceClient<std_srvs::Trigger>>(nh, "base/stop",
                                                                                                     service_timeout);
+  greet_client_ = std::make_unique<biovision_ros_common::AsyncServiceClient<std_srvs::Trigger>>(nh, "hri/greet",
+                                                                                                service_timeout);
+  stop_greet_client_ = std::make_unique<biovision_ros_common::AsyncServiceClient<std_srvs::Trigger>>(
+      nh, "hri/stop_greet", service_timeout);
   cancel_srv_ = nh.advertiseService("tasks/cancel", &TaskManagerNodelet::onCancel, this);
 
   biovision_ros_common::DiagnosticsOptions d;
@@ -204,6 +209,13 @@ void TaskManagerNodelet::onBaseState(const biovision_msgs::AttractorStateConstPt
   base_state_time_ = msg->header.stamp.isZero() ? ros::Time::now() : msg->header.stamp;
 }
 
+void TaskManagerNodelet::onGestureAction(const std_msgs::StringConstPtr& msg)
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  gesture_action_ = msg->data;
+  gesture_action_time_ = ros::Time::now();
+}
+
 void TaskManagerNodelet::onGoal()
 {
   const auto goal = action_->acceptNewGoal();
@@ -279,6 +291,8 @@ void TaskManagerNodelet::onTimeJumpBack()
   }
   goal_tasks_.clear();
   head_mode_.clear();
+  gesture_action_.clear();
+  gesture_action_time_ = ros::Time();
 }
 
 Percept TaskManagerNodelet::perceive(const ros::Time& now)
@@ -323,6 +337,11 @@ Percept TaskManagerNodelet::perceive(const ros::Time& now)
   const bool fresh = (now - base_state_time_).toSec() <= 2.0;
   p.base_trapped = fresh && isTrapped(base_behaviour_);
   p.base_fault = fresh && isFault(base_behaviour_);
+  if (!gesture_action_.empty())
+  {
+    p.gesture_action = gesture_action_;
+    p.gesture_action_time = gesture_action_time_.toSec();
+  }
   return p;
 }
 
@@ -368,6 +387,22 @@ void TaskManagerNodelet::collectServiceAnswers()
     if (!stopped)
       NODELET_WARN_THROTTLE(5.0, "task_manager: base/stop %s", base_stop_answer_.c_str());
   }
+  for (auto* client : {greet_client_.get(), stop_greet_client_.get()})
+    if (const auto r = client->take())
+    {
+      const bool ok = r->answered && r->response.success;
+      greet_answer_ = std::string(client == greet_client_.get() ? "hri/greet " : "hri/stop_greet ") +
+                      (ok             ? "answered: " + r->response.message
+                       : r->answered  ? "refused: " + r->response.message
+                       : r->timed_out ? "no answer within " + seconds(client->timeout())
+                                      : "no HRI node");
+      if (!ok && client == greet_client_.get())
+      {
+        greeting_ = false;  // call again (the greet task is still waiting), after kServiceRetry
+        greet_retry_at_ = now + ros::WallDuration(kServiceRetry);
+        NODELET_WARN_THROTTLE(5.0, "task_manager: %s", greet_answer_.c_str());
+      }
+    }
 }
 
 void TaskManagerNodelet::command(const MotorCommand& c, const Percept& p, const ros::Time& now)
@@ -384,6 +419,13 @@ void TaskManagerNodelet::command(const MotorCommand& c, const Percept& p, const 
     request.target = c.head_target;
     if (head_mode_client_->start(request))
       head_mode_requested_ = c.head_mode;
+  }
+  if (c.greet && !greeting_ && wall >= greet_retry_at_ && greet_client_->start(std_srvs::Trigger::Request()))
+    greeting_ = true;
+  else if (!c.greet && greeting_)
+  {
+    stop_greet_client_->start(std_srvs::Trigger::Request());  // best effort: the HRI behaviour times out anyway
+    greeting_ = false;
   }
   if (c.base == MotorCommand::Base::Stop)
   {
@@ -490,6 +532,8 @@ void TaskManagerNodelet::details(diagnostic_updater::DiagnosticStatusWrapper& s)
   s.add("home known", manager_->record().home_known);
   s.add("path length [m]", manager_->record().path_length);
   s.add("LTM cells", map_.empty() ? 0 : map_.cells().total());
+  s.add("hri", greet_answer_.empty() ? "not called" : greet_answer_);
+  s.add("last gesture action", gesture_action_.empty() ? "none" : gesture_action_);
   s.add("head mode", head_mode_);
   s.add("head/set_mode", head_mode_answer_.empty() ? "not called" : head_mode_answer_);
   s.add("base/stop", base_stop_answer_.empty() ? "not called" : base_stop_answer_);

@@ -16,6 +16,7 @@
 #include <nav_msgs/OccupancyGrid.h>
 #include <nodelet/nodelet.h>
 #include <ros/ros.h>
+#include <std_msgs/String.h>
 #include <std_srvs/Trigger.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
@@ -66,6 +67,7 @@ private:
   void onLtm(const nav_msgs::OccupancyGridConstPtr& msg);
   void onLtmItems(const biovision_msgs::LtmItemArrayConstPtr& msg);
   void onBaseState(const biovision_msgs::AttractorStateConstPtr& msg);
+  void onGestureAction(const std_msgs::StringConstPtr& msg);
   void onGoal();
   void onPreempt();
   bool onCancel(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
@@ -99,13 +101,19 @@ private:
   ros::WallTime head_mode_retry_at_, base_stop_retry_at_;     ///< no new call before, after a failure
   bool moved_since_stop_call_ = false;          ///< a goal or turn was sent after the base/stop call under way began
   static constexpr double kServiceRetry = 1.0;  ///< [wall s] between a failed service call and the next
-  MotorCommand sent_;  ///< the last base command sent (goals are re-sent only when they change)
+  std::string gesture_action_;                  ///< biovision_hri's last hri/action ...
+  ros::Time gesture_action_time_;               ///< ... and when it arrived
+  bool greeting_ = false;         ///< hri/greet was called for the running greet (hri/stop_greet when it ends)
+  std::string greet_answer_;      ///< the last hri/greet or hri/stop_greet outcome, for diagnostics
+  ros::WallTime greet_retry_at_;  ///< no new hri/greet call before, after a failed one
+  MotorCommand sent_;             ///< the last base command sent (goals are re-sent only when they change)
   ros::Time sent_time_;
 
   ros::Publisher goal_pub_, bearing_pub_, status_pub_;
-  ros::Subscriber objects_sub_, ltm_sub_, items_sub_, base_sub_;
+  ros::Subscriber objects_sub_, ltm_sub_, items_sub_, base_sub_, gesture_action_sub_;
   std::unique_ptr<biovision_ros_common::AsyncServiceClient<biovision_msgs::SetHeadMode>> head_mode_client_;
   std::unique_ptr<biovision_ros_common::AsyncServiceClient<std_srvs::Trigger>> base_stop_client_;
+  std::unique_ptr<biovision_ros_common::AsyncServiceClient<std_srvs::Trigger>> greet_client_, stop_greet_client_;
   ros::ServiceServer cancel_srv_;
   ros::Timer timer_;
   std::unique_ptr<actionlib::SimpleActionServer<biovision_msgs::ExecuteTaskAction>> action_;

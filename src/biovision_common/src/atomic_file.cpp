@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -16,8 +17,11 @@ namespace biovision_common
 {
 void writeFileAtomically(const std::string& path, const void* data, size_t size)
 {
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  // <pid>.<n>: two threads of one process writing the same path must not share a temporary (one would
+  // rename the other's half-written file into place).
+  static std::atomic<unsigned long> count{0};
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(count++);
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
   if (fd < 0)
     throw FileError("cannot write " + tmp + ": " + std::strerror(errno));
   const auto* bytes = static_cast<const char*>(data);
@@ -74,8 +78,12 @@ std::vector<std::string> removeStaleTemporaries(const std::string& path)
     const std::string name = entry.path().filename().string();
     if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0)
       continue;
-    const std::string digits = name.substr(prefix.size());
-    if (digits.size() > 10 || digits.find_first_not_of("0123456789") != std::string::npos)
+    // <pid> (older builds) or <pid>.<n>.
+    const std::string suffix = name.substr(prefix.size());
+    const size_t dot = suffix.find('.');
+    const std::string digits = suffix.substr(0, dot), count = dot == std::string::npos ? "0" : suffix.substr(dot + 1);
+    if (digits.empty() || digits.size() > 10 || digits.find_first_not_of("0123456789") != std::string::npos ||
+        count.empty() || count.size() > 20 || count.find_first_not_of("0123456789") != std::string::npos)
       continue;  // not one of ours
     const long pid = std::stol(digits);
     if (pid == static_cast<long>(::getpid()) || processRuns(pid))

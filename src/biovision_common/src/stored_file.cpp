@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 
@@ -80,10 +81,22 @@ void StoredFile::write(const std::string& path, const std::string& magic, uint32
 
 std::vector<uint8_t> StoredFile::read(const std::string& path, const std::string& magic, uint32_t version)
 {
+  // Only regular files: a directory, a FIFO (would block) or /dev/zero (never ends) is no stored file.
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error))
+    throw StoredFileError(path + (std::filesystem::exists(path, error) ? ": not a regular file" : ": cannot open"));
   std::ifstream in(path, std::ios::binary);
   if (!in)
     throw StoredFileError(path + ": cannot open");
-  std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::vector<uint8_t> bytes;
+  try
+  {
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  catch (const std::exception& e)
+  {
+    throw StoredFileError(path + ": cannot read: " + e.what());
+  }
   if (bytes.size() < kHeader + 4)
     throw StoredFileError(path + ": too short to be a stored file (" + std::to_string(bytes.size()) + " bytes)");
   const std::string m = paddedMagic(magic);

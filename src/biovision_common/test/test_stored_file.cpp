@@ -4,10 +4,12 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <thread>
 
 #include "biovision_common/atomic_file.hpp"
 #include "biovision_common/payload_writer.hpp"
@@ -67,8 +69,67 @@ TEST(StoredFile, WriteLeavesNoTemporaryBehind)
   StoredFile::write(path, "TEST", 1, {9});
   StoredFile::write(path, "TEST", 1, {8});
   EXPECT_EQ(StoredFile::read(path, "TEST", 1), std::vector<uint8_t>{8});
-  EXPECT_FALSE(std::ifstream(path + ".tmp." + std::to_string(::getpid())).good());
+  for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(path).parent_path()))
+    EXPECT_NE(entry.path().filename().string().rfind("atomic.bin.tmp.", 0), 0u) << entry.path();
   std::remove(path.c_str());
+}
+
+// Two threads of one process writing one path (the breaker's case: they shared "<path>.tmp.<pid>", so one
+// renamed the other's half-written file into place): every read sees one whole file or the other.
+TEST(StoredFile, ThreadsWritingOnePathNeverExposeAHalfFile)
+{
+  const std::string path = tempPath("threads.bin");
+  StoredFile::write(path, "TEST", 1, std::vector<uint8_t>(4096, 1));
+  std::atomic<bool> stop{false};
+  std::atomic<int> write_failures{0};
+  auto writer = [&](uint8_t value) {
+    for (int i = 0; i < 150; ++i)
+      try
+      {
+        StoredFile::write(path, "TEST", 1, std::vector<uint8_t>(4096, value));
+      }
+      catch (const std::exception&)
+      {
+        ++write_failures;
+      }
+  };
+  int bad_reads = 0, reads = 0;
+  std::thread reader([&] {
+    while (!stop)
+    {
+      try
+      {
+        const auto v = StoredFile::read(path, "TEST", 1);
+        bad_reads += v.size() != 4096 || (v.front() != 1 && v.front() != 2);
+      }
+      catch (const StoredFileError&)
+      {
+        ++bad_reads;
+      }
+      ++reads;
+    }
+  });
+  std::thread a(writer, 1), b(writer, 2);
+  a.join();
+  b.join();
+  stop = true;
+  reader.join();
+  EXPECT_EQ(write_failures, 0);
+  EXPECT_EQ(bad_reads, 0) << "of " << reads << " reads";
+  std::remove(path.c_str());
+}
+
+TEST(StoredFile, ADirectoryOrAFifoIsRefusedWithoutBlocking)
+{
+  const std::string dir = tempPath("a_directory");
+  std::filesystem::create_directories(dir);
+  EXPECT_THROW(StoredFile::read(dir, "TEST", 1), StoredFileError);
+  const std::string fifo = tempPath("a_fifo");
+  std::remove(fifo.c_str());
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_THROW(StoredFile::read(fifo, "TEST", 1), StoredFileError);  // opening it would wait for a writer
+  std::remove(fifo.c_str());
+  std::filesystem::remove_all(dir);
 }
 
 TEST(StoredFile, LoadRefusesAPayloadTheParserDoesNotConsume)
@@ -144,12 +205,14 @@ TEST(AtomicFile, RemovesTemporariesOfDeadProcessesOnly)
   const std::string own = path + ".tmp." + std::to_string(::getpid());
   const std::string foreign = path + ".tmp.notapid";
   const std::string other = dir + "/other.bin.tmp." + std::to_string(child);
-  for (const auto& f : {dead, alive, own, foreign, other})
+  // Today's names carry a per-call number: <pid>.<n>.
+  const std::string dead_numbered = dead + ".7", alive_numbered = alive + ".2", odd = dead + ".x";
+  for (const auto& f : {dead, alive, own, foreign, other, dead_numbered, alive_numbered, odd})
     writeBytes(f, {1, 2, 3});
   const auto removed = removeStaleTemporaries(path);
-  EXPECT_EQ(removed, std::vector<std::string>{dead});
+  EXPECT_EQ(removed, (std::vector<std::string>{dead, dead_numbered}));
   EXPECT_FALSE(std::filesystem::exists(dead));
-  for (const auto& f : {alive, own, foreign, other})
+  for (const auto& f : {alive, own, foreign, other, alive_numbered, odd})
     EXPECT_TRUE(std::filesystem::exists(f)) << f;
   // A bare file name (the current folder) and a missing folder do not throw.
   EXPECT_TRUE(removeStaleTemporaries(dir + "/missing/memory.bin").empty());

@@ -15,14 +15,16 @@ struct FileError : std::runtime_error
 
 /// Writes `size` bytes to `path` atomically: a temporary file beside it (same folder, so rename cannot
 /// cross file systems), fsync, then rename over `path`. A crash leaves the old file or the new one, never
-/// half of one. Throws FileError (and removes the temporary file) on any failure.
+/// half of one. The temporary is `<path>.tmp.<pid>.<n>`, unique per call, so threads writing the same path
+/// do not share one. Throws FileError (and removes the temporary file) on any failure.
 void writeFileAtomically(const std::string& path, const void* data, size_t size);
 inline void writeFileAtomically(const std::string& path, const std::string& text)
 {
   writeFileAtomically(path, text.data(), text.size());
 }
 
-/// Removes the temporaries `<path>.tmp.<pid>` that writeFileAtomically(path, ...) left behind in processes
+/// Removes the temporaries `<path>.tmp.<pid>.<n>` (and older builds' `<path>.tmp.<pid>`) that
+/// writeFileAtomically(path, ...) left behind in processes
 /// that no longer run (killed during a write: kill -9, power cut). Temporaries of live processes, and of this
 /// one, are kept. Call it before the first write of a stored file; returns the removed files (for the log).
 /// Never throws: a temporary that cannot be removed is skipped.

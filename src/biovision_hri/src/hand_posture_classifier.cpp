@@ -18,7 +18,31 @@ namespace
 {
 const char* const kMagic = "BVHRIPOS";
 constexpr uint32_t kVersion = 1;
-constexpr size_t kMaxLabels = 256;
+constexpr size_t kMaxLabels = 256;       // classes in a model
+constexpr size_t kMaxLabelLength = 256;  // characters of a label (and of the rejection label)
+constexpr size_t kMaxProvenance = 1u << 16;
+// A region whose square is this many times the image's larger side is no hand region (its patch would
+// hold the whole image in less than a pixel).
+constexpr double kMaxRegionToImage = 8.0;
+
+bool usableRegion(const cv::Mat& gray, const cv::Rect& box)
+{
+  const double side = std::max(double(box.width), double(box.height));
+  return box.width > 0 && box.height > 0 && (box & cv::Rect(0, 0, gray.cols, gray.rows)).area() > 0 &&
+         side <= kMaxRegionToImage * std::max(gray.cols, gray.rows);
+}
+
+void checkLabel(const std::string& label, const char* what)
+{
+  if (label.empty() || label.size() > kMaxLabelLength)
+    throw std::invalid_argument(std::string("HandPostureClassifier: ") + what + " must have 1-" +
+                                std::to_string(kMaxLabelLength) + " characters, got " + std::to_string(label.size()));
+}
+
+bool allFinite(const cv::Mat& m)
+{
+  return cv::checkRange(m);
+}
 
 void check(bool ok, const std::string& message)
 {
@@ -36,7 +60,9 @@ void checkImage(const cv::Mat& gray, const char* what)
 
 void HandPostureClassifier::Parameters::validate() const
 {
-  check(std::isfinite(C) && C > 0, "C must be > 0, got " + std::to_string(C));
+  check(std::isfinite(C) && C >= 1e-6 && C <= 1e6, "C must be in [1e-6, 1e6], got " + std::to_string(C));
+  check(!rejection_label.empty() && rejection_label.size() <= kMaxLabelLength,
+        "rejection_label must have 1-" + std::to_string(kMaxLabelLength) + " characters");
   check(std::isfinite(rotation) && rotation >= 0 && rotation <= 45,
         "rotation must be in [0, 45] deg, got " + std::to_string(rotation));
   check(std::isfinite(margin) && margin >= 0 && margin <= 1, "margin must be in [0, 1], got " + std::to_string(margin));
@@ -84,25 +110,34 @@ cv::Mat HandPostureClassifier::regionPatch(const cv::Mat& gray, const cv::Rect& 
 void HandPostureClassifier::addExample(const cv::Mat& gray, const cv::Rect& box, const std::string& label)
 {
   checkImage(gray, "addExample");
-  if (label.empty())
-    throw std::invalid_argument("HandPostureClassifier::addExample: empty label");
-  if ((box & cv::Rect(0, 0, gray.cols, gray.rows)).area() <= 0)
-    throw std::invalid_argument("HandPostureClassifier::addExample: the box does not overlap the image");
+  checkLabel(label, "a label");
+  if (!usableRegion(gray, box))
+    throw std::invalid_argument(
+        "HandPostureClassifier::addExample: the box is empty, outside the image or more "
+        "than 8 times its size");
   std::vector<double> angles{0.0};
   if (parameters_.rotation > 0)
     angles = {-parameters_.rotation, 0.0, parameters_.rotation};
+  std::vector<cv::Mat> rows;
   for (double a : angles)
   {
     const cv::Mat patch = regionPatch(gray, box, a);
-    examples_.push_back(features_.patchFeatures(patch).clone());
-    example_labels_.push_back(label);
+    rows.push_back(features_.patchFeatures(patch).clone());
     if (parameters_.mirror)
     {
       cv::Mat mirrored;
       cv::flip(patch, mirrored, 1);
-      examples_.push_back(features_.patchFeatures(mirrored).clone());
-      example_labels_.push_back(label);
+      rows.push_back(features_.patchFeatures(mirrored).clone());
     }
+  }
+  // One NaN would make every SVM weight NaN: refuse the example, keep the others.
+  for (const cv::Mat& r : rows)
+    if (!allFinite(r))
+      throw std::invalid_argument("HandPostureClassifier::addExample: the region has non-finite pixels");
+  for (cv::Mat& r : rows)
+  {
+    examples_.push_back(r);
+    example_labels_.push_back(label);
   }
 }
 
@@ -113,8 +148,9 @@ void HandPostureClassifier::train()
   labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
   const bool has_gesture = std::any_of(labels.begin(), labels.end(),
                                        [&](const std::string& l) { return l != parameters_.rejection_label; });
-  if (labels.size() < 2 || !has_gesture)
-    throw std::logic_error("HandPostureClassifier::train: needs examples of >= 2 labels, one of them a gesture");
+  if (labels.size() < 2 || !has_gesture || labels.size() > kMaxLabels)
+    throw std::logic_error("HandPostureClassifier::train: needs examples of 2-" + std::to_string(kMaxLabels) +
+                           " labels, one of them a gesture; got " + std::to_string(labels.size()));
   cv::Mat samples;
   cv::vconcat(examples_, samples);
   LinearSvmTrainer::Parameters p;
@@ -127,6 +163,9 @@ void HandPostureClassifier::train()
     for (size_t i = 0; i < y.size(); ++i)
       y[i] = example_labels_[i] == labels[k] ? 1 : -1;
     const auto r = LinearSvmTrainer::train(samples, y, p);
+    if (!std::all_of(r.weights.begin(), r.weights.end(), [](float v) { return std::isfinite(v); }) ||
+        !std::isfinite(r.bias))
+      throw std::logic_error("HandPostureClassifier::train: LIBLINEAR gave non-finite weights for '" + labels[k] + "'");
     std::copy(r.weights.begin(), r.weights.end(), weights.ptr<float>(static_cast<int>(k)));
     biases.push_back(r.bias);
   }
@@ -145,9 +184,16 @@ std::vector<GestureResult> HandPostureClassifier::classify(const cv::Mat& gray, 
   {
     GestureResult r;
     r.box = box;
-    if ((box & cv::Rect(0, 0, gray.cols, gray.rows)).area() > 0)
+    if (usableRegion(gray, box))
     {
       const cv::Mat f = features_.patchFeatures(regionPatch(gray, box, 0.0));
+      // A textureless region has all-zero features, so the biases alone would pick a class; non-finite
+      // pixels give non-finite features. Neither is a gesture.
+      if (!allFinite(f) || cv::norm(f, cv::NORM_L2) < kMinFeatureNorm)
+      {
+        results.push_back(r);
+        continue;
+      }
       float best = -std::numeric_limits<float>::infinity();
       for (int k = 0; k < weights_.rows; ++k)
       {
@@ -171,6 +217,13 @@ void HandPostureClassifier::save(const std::string& path, const std::string& pro
 {
   if (!trained())
     throw std::logic_error("HandPostureClassifier::save: not trained");
+  // What load() would refuse is not written.
+  for (const auto& l : labels_)
+    checkLabel(l, "a label");
+  checkLabel(parameters_.rejection_label, "the rejection label");
+  if (provenance.size() > kMaxProvenance)
+    throw std::invalid_argument("HandPostureClassifier::save: provenance longer than " +
+                                std::to_string(kMaxProvenance) + " characters");
   biovision_common::PayloadWriter w;
   layout().write(w);
   w.putString(parameters_.rejection_label);
@@ -199,14 +252,16 @@ void HandPostureClassifier::load(const std::string& path)
       path, kMagic, kVersion, "hand posture model", [](biovision_common::PayloadReader& r) {
         Stored m;
         m.layout = FeatureLayout::read(r);
-        m.rejection_label = r.getString(256);
+        m.rejection_label = r.getString(kMaxLabelLength);
         const auto count = r.get<uint64_t>();
         if (count < 2 || count > kMaxLabels)
           throw std::runtime_error(std::to_string(count) + " classes (2-" + std::to_string(kMaxLabels) + ")");
         m.weights.create(static_cast<int>(count), m.layout.featureCount(), CV_32F);
         for (uint64_t k = 0; k < count; ++k)
         {
-          m.labels.push_back(r.getString(256));
+          m.labels.push_back(r.getString(kMaxLabelLength));
+          if (std::count(m.labels.begin(), m.labels.end(), m.labels.back()) > 1)
+            throw std::runtime_error("class '" + m.labels.back() + "' twice");
           const auto w = r.getArray<float>(1u << 20);
           const float b = r.get<float>();
           if (m.labels.back().empty() || static_cast<int>(w.size()) != m.layout.featureCount())
@@ -217,7 +272,7 @@ void HandPostureClassifier::load(const std::string& path)
           std::copy(w.begin(), w.end(), m.weights.ptr<float>(static_cast<int>(k)));
           m.biases.push_back(b);
         }
-        r.getString(1u << 16);  // provenance: for people reading the file
+        r.getString(kMaxProvenance);  // provenance: for people reading the file
         return m;
       });
   features_ = ComplexCellFeatures(s.layout);

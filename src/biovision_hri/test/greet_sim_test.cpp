@@ -6,6 +6,10 @@
 // the face in the rendered left image and turn the head (pan and tilt, through the simulated servos) until
 // the face is at the image centre, inside the joint limits; hri/stop_greet gives the head back.
 //
+// ~through (default "service"): "tasks" sends a `greet` task to biovision_tasks' task manager instead
+// (greet_tasks_sim.test), which calls hri/greet; nobody shows a gesture, so the task fails at its time-out
+// and the task manager's hri/stop_greet gives the head back.
+//
 // ~person (default "face"): "face" places the figure with the face; "none" places nothing and
 // "blank" gives the head a procedural texture — both must make this test fail (how it was checked that
 // it can fail: README, Tests).
@@ -18,9 +22,12 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <mutex>
 
+#include <actionlib/client/simple_action_client.h>
 #include <biovision_msgs/DetectionArray.h>
+#include <biovision_msgs/ExecuteTaskAction.h>
 #include <biovision_msgs/PlaceObject.h>
 #include <biovision_msgs/SetHeadMode.h>
 #include <opencv2/imgcodecs.hpp>
@@ -45,6 +52,10 @@ constexpr double kPersonX = 1.6, kPersonY = 0.3, kHeadSide = 0.30, kBodyHeight =
 // Centred: the face box centre within this many pixels of the 320x240 image centre (≈ 0.06 rad at the
 // sim's 43° field of view; the behaviour stops correcting below `centred_tolerance` 0.05 rad).
 constexpr double kCentreTolerancePx = 24.0;
+// [s] the greet task's time-out (through the tasks): after the face search (hri's 8 s) and centring (~5 s),
+// before hri's own gesture wait (15 s) would end the greeting by itself.
+constexpr double kGreetTaskTimeout = 20.0;
+using TaskClient = actionlib::SimpleActionClient<biovision_msgs::ExecuteTaskAction>;
 
 std::string sharedRoot()
 {
@@ -153,6 +164,8 @@ TEST_F(GreetSim, TheFaceOfThePersonIsFoundAndCentredAndStopGivesTheHeadBack)
   ASSERT_TRUE(ros::service::waitForService("hri/greet", ros::Duration(30.0)));
   // A stand-in for the head controller's mode service (no attractor here): the behaviour must hold the
   // head when it starts and give it back ("explore") when stopped.
+  std::string through;
+  ros::NodeHandle("~").param<std::string>("through", through, "service");
   std::vector<std::string> modes;
   std::mutex modes_mutex;
   ros::ServiceServer mode_srv =
@@ -172,8 +185,21 @@ TEST_F(GreetSim, TheFaceOfThePersonIsFoundAndCentredAndStopGivesTheHeadBack)
   EXPECT_NEAR(pan0, 0.0, 0.01) << "the head starts straight ahead";
 
   std_srvs::Trigger trigger;
-  ASSERT_TRUE(ros::service::call("hri/greet", trigger));
-  ASSERT_TRUE(trigger.response.success) << trigger.response.message;
+  std::unique_ptr<TaskClient> tasks;
+  if (through == "tasks")
+  {
+    tasks = std::make_unique<TaskClient>(nh_, "tasks/execute", false);
+    ASSERT_TRUE(tasks->waitForServer(ros::Duration(30.0)));
+    biovision_msgs::ExecuteTaskGoal greet;
+    greet.task = "greet";
+    greet.arguments = {"timeout=" + std::to_string(int(kGreetTaskTimeout))};
+    tasks->sendGoal(greet);
+  }
+  else
+  {
+    ASSERT_TRUE(ros::service::call("hri/greet", trigger));
+    ASSERT_TRUE(trigger.response.success) << trigger.response.message;
+  }
 
   // Found and centred: a face on hri/faces whose box centre is within tolerance of the image centre while
   // the head points at the person (pan turned left towards its bearing, tilt up).
@@ -217,9 +243,19 @@ TEST_F(GreetSim, TheFaceOfThePersonIsFoundAndCentredAndStopGivesTheHeadBack)
     EXPECT_EQ(modes.front(), "hold");
   }
 
-  // Stop: the head is given back to the head controller and hri commands it no more.
-  ASSERT_TRUE(ros::service::call("hri/stop_greet", trigger));
-  EXPECT_TRUE(trigger.response.success) << trigger.response.message;
+  // Stop: the head is given back to the head controller and hri commands it no more. Through the tasks:
+  // the greet fails at its time-out (no gesture) and the task manager calls hri/stop_greet.
+  if (tasks)
+  {
+    ASSERT_TRUE(tasks->waitForResult(ros::Duration(kGreetTaskTimeout + 15.0))) << "the greet task never ended";
+    EXPECT_EQ(tasks->getState(), actionlib::SimpleClientGoalState::ABORTED);
+    EXPECT_NE(tasks->getResult()->message.find("no gesture read"), std::string::npos) << tasks->getResult()->message;
+  }
+  else
+  {
+    ASSERT_TRUE(ros::service::call("hri/stop_greet", trigger));
+    EXPECT_TRUE(trigger.response.success) << trigger.response.message;
+  }
   EXPECT_TRUE(waitFor(
       [&] {
         std::lock_guard<std::mutex> lock(modes_mutex);

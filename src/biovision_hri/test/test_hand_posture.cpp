@@ -1,6 +1,7 @@
 #include <fstream>
 #include <functional>
 #include <iterator>
+#include <limits>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
@@ -219,4 +220,44 @@ TEST(FeatureLayout, WriteReadRoundTripAndRefusesAnInvalidLayout)
   l.write(bad);
   biovision_common::PayloadReader rb(bad.bytes());
   EXPECT_THROW(FeatureLayout::read(rb), std::invalid_argument);
+}
+
+// What a helper found trying to break it (2026-12-06).
+TEST(HandPostureClassifier, RefusesWhatWouldSpoilTheModelOrNotLoadAgain)
+{
+  HandPostureClassifier c = trained();
+  cv::Mat nan_region = texture(90, 90, 3);
+  nan_region.at<float>(45, 45) = std::numeric_limits<float>::quiet_NaN();
+  const size_t before = c.exampleCount();
+  EXPECT_THROW(c.addExample(nan_region, cv::Rect(0, 0, 90, 90), "f1"), std::invalid_argument);
+  EXPECT_EQ(c.exampleCount(), before) << "a refused example adds none of its copies";
+  EXPECT_THROW(c.addExample(texture(90, 90, 3), cv::Rect(0, 0, 90, 90), std::string(257, 'x')), std::invalid_argument);
+  EXPECT_THROW(c.addExample(texture(90, 90, 3), cv::Rect(0, 0, 1000000, 1000000), "f1"), std::invalid_argument);
+  EXPECT_THROW(c.save(::testing::TempDir() + "/long_provenance.bin", std::string((1u << 16) + 1, 'p')),
+               std::invalid_argument);
+  HandPostureClassifier::Parameters p;
+  p.C = 1e-300;
+  EXPECT_THROW(c.setParameters(p), std::invalid_argument);
+  p = HandPostureClassifier::Parameters();
+  p.rejection_label = "";
+  EXPECT_THROW(c.setParameters(p), std::invalid_argument);
+}
+
+TEST(HandPostureClassifier, AFlatOrHugeOrNonFiniteRegionIsNoGesture)
+{
+  HandPostureClassifier c = trained();
+  const cv::Mat flat(240, 320, CV_32F, cv::Scalar(0.5));
+  cv::Mat nan_image = texture(320, 240, 4);
+  nan_image.setTo(std::numeric_limits<float>::infinity());
+  for (const auto& [image, box] :
+       std::vector<std::pair<cv::Mat, cv::Rect>>{{flat, cv::Rect(100, 60, 90, 90)},
+                                                 {cv::Mat(1, 1, CV_32F, cv::Scalar(0.2)), cv::Rect(0, 0, 1, 1)},
+                                                 {texture(320, 240, 5), cv::Rect(0, 0, 1000000, 1000000)},
+                                                 {texture(320, 240, 5), cv::Rect(-2000000000, 0, 2000000100, 50)},
+                                                 {nan_image, cv::Rect(100, 60, 90, 90)}})
+  {
+    const GestureResult r = c.classify(image, {box}).front();
+    EXPECT_EQ(r.label, "") << box;
+    EXPECT_EQ(r.best_label, "") << box;
+  }
 }

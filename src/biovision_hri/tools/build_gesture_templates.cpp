@@ -5,6 +5,7 @@
 // same regions also train the hand posture SVMs (HandPostureClassifier, StoredFile "BVHRIPOS").
 
 #include <ctime>
+#include <filesystem>
 #include <iostream>
 #include <map>
 #include <sstream>
@@ -49,6 +50,17 @@ int main(int argc, char** argv)
   options.parse(argc, argv);
   try
   {
+    // Refuse what would fail half way (after the template file was replaced) before any work.
+    namespace fs = std::filesystem;
+    if (!posture_out.empty() && fs::absolute(posture_out).lexically_normal() == fs::absolute(out).lexically_normal())
+      throw std::invalid_argument("--out and --posture-out name the same file");
+    for (const std::string& f : {out, posture_out})
+      if (!f.empty())
+      {
+        const fs::path folder = fs::absolute(f).parent_path();
+        if (!fs::is_directory(folder))
+          throw std::invalid_argument("no folder " + folder.string() + " for " + f);
+      }
     auto descriptor = std::make_shared<const biovision_recognition::V1Descriptor>(
         biovision_recognition::DescriptorModel::load(descriptor_model));
     GestureRecognizer recognizer(descriptor, GestureRecognizer::Parameters());
@@ -96,10 +108,11 @@ int main(int argc, char** argv)
       if (!posture_out.empty())
         posture.addExample(patch, cv::Rect(0, 0, patch.cols, patch.rows), "none");
     }
+    if (!posture_out.empty())
+      posture.train();  // before any file is written: a failure leaves both as they were
     recognizer.saveTemplates(out);
     if (!posture_out.empty())
     {
-      posture.train();
       char date[16];
       const std::time_t now = std::time(nullptr);
       std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));

@@ -29,7 +29,7 @@ class HandPostureClassifier
 public:
   struct Parameters
   {
-    /// Soft-margin cost of every one-vs-rest SVM. Chosen on the validation parts of LinTO and Triesch
+    /// Soft-margin cost of every one-vs-rest SVM ([1e-6, 1e6]). Chosen on the validation parts of LinTO and Triesch
     /// (their template parts split again, as `gesture_eval --validation true`): 0.01 lost 5 of 41 Triesch
     /// postures, 0.03-1 within one region of each other. > 0
     double C = 0.1;
@@ -44,7 +44,7 @@ public:
     /// Validation, with the rejection class: 0 kept 1 of 15 LinTO regions, -0.5 and -10 (no threshold) 9;
     /// gesture-free regions 0 of 200 false in all three. So the rejection class does the rejecting.
     double min_score = -10.0;
-    std::string rejection_label = "none";
+    std::string rejection_label = "none";  ///< 1-256 characters
 
     /// Throws std::invalid_argument naming the field and its range.
     void validate() const;
@@ -55,24 +55,29 @@ public:
 
   /// Adds the region `box` of a gray image (CV_32FC1 in [0, 1]) as a training example of `label`, with its
   /// augmented copies (3 rotations x 2 mirrors by default). The region is cut as a square around the box's
-  /// centre (image border replicated). Throws std::invalid_argument for an empty label, an empty or
-  /// non-float image, or a box that does not overlap it.
+  /// centre (image border replicated). Throws std::invalid_argument for a label of 0 or > 256 characters,
+  /// an empty or non-float image, non-finite pixels in the region, or a box that is empty, does not
+  /// overlap the image or is more than 8 times its larger side (nothing is added then).
   void addExample(const cv::Mat& gray, const cv::Rect& box, const std::string& label);
-  /// Trains one SVM per label on the examples (LIBLINEAR; needs >= 2 labels, at least one of them not the
+  /// Trains one SVM per label on the examples (LIBLINEAR; needs 2-256 labels, at least one of them not the
   /// rejection label). Throws std::logic_error otherwise. The examples are kept (a later call retrains).
   void train();
   bool trained() const { return !labels_.empty(); }
 
   /// One result per hand box, in order; label "" when no gesture (rejection class won or score <
   /// min_score); `score` is the winning class's SVM score, `matches` 0. Throws std::logic_error when not
-  /// trained, std::invalid_argument for an empty or non-float image. Boxes outside the image give "".
+  /// trained, std::invalid_argument for an empty or non-float image. A box addExample() would refuse, a
+  /// textureless region (all features ~0: the biases alone would pick a class) and non-finite pixels give
+  /// "" with best_label "".
   std::vector<GestureResult> classify(const cv::Mat& gray, const std::vector<cv::Rect>& hand_boxes);
 
   /// StoredFile "BVHRIPOS" (version, byte-order mark, CRC-32, written atomically): layout, labels, weights,
-  /// `provenance`. The examples are not stored. Throws std::logic_error when not trained.
+  /// `provenance`. The examples are not stored. Throws std::logic_error when not trained,
+  /// std::invalid_argument for what load() would refuse (labels > 256 characters, provenance > 64 KiB).
   void save(const std::string& path, const std::string& provenance) const;
   /// Replaces the layout and the trained classes with a file's. Throws biovision_common::StoredFileError
-  /// for a missing, foreign, corrupt, truncated or inconsistent file (nothing is changed then).
+  /// for a missing, foreign, corrupt, truncated or inconsistent file (a class twice, non-finite weights)
+  /// or a path that is no regular file (nothing is changed then).
   void load(const std::string& path);
 
   const std::vector<std::string>& labels() const { return labels_; }
@@ -83,6 +88,9 @@ public:
 
   /// The square crop the classifier sees for `box` (side of the layout's window), rotated by `degrees`.
   cv::Mat regionPatch(const cv::Mat& gray, const cv::Rect& box, double degrees) const;
+
+  /// Features with a smaller L2 norm are a textureless region (a flat patch gives exactly 0).
+  static constexpr double kMinFeatureNorm = 1e-3;
 
 private:
   ComplexCellFeatures features_;

@@ -57,6 +57,7 @@ void HriNodelet::onInitNodelet()
   pnh.param<std::string>("descriptor_model", descriptor_model,
                          ros::package::getPath("biovision_recognition") + "/models/v1_ldahash_128.bin");
   pnh.param("max_input_age", max_input_age_, 0.5);
+  max_input_pixels_ = biovision_ros_common::ImageMessageConverter::maxInputPixels(pnh);  // throws: fatal at start
   pnh.param<std::string>("pan_joint", pan_joint_, "head_pan_joint");
   pnh.param<std::string>("tilt_joint", tilt_joint_, "head_tilt_joint");
   pnh.param("horizontal_fov", greet_base_.horizontal_fov, greet_base_.horizontal_fov);
@@ -94,7 +95,8 @@ void HriNodelet::onInitNodelet()
     catch (const std::exception& e)
     {
       gestures_.reset();
-      diagnostics_.health().reportError(getName(), std::string("gestures off: ") + e.what());
+      gestures_off_ = std::string("gesture templates off: ") + e.what();
+      diagnostics_.health().reportError(getName(), gestures_off_);
     }
   }
   if (!posture_model.empty())
@@ -108,7 +110,8 @@ void HriNodelet::onInitNodelet()
     }
     catch (const std::exception& e)
     {
-      diagnostics_.health().reportError(getName(), std::string("posture SVMs off: ") + e.what());
+      posture_off_ = std::string("posture SVMs off: ") + e.what();
+      diagnostics_.health().reportError(getName(), posture_off_);
     }
   }
   behaviour_ = std::make_unique<GreetBehaviour>(greet_base_);
@@ -299,7 +302,7 @@ void HriNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
     try
     {
       const cv::Mat input = biovision_ros_common::ImageMessageConverter::toCv(
-          *msg, biovision_ros_common::ImageMessageConverter::Depth::Keep);
+          *msg, biovision_ros_common::ImageMessageConverter::Depth::Keep, max_input_pixels_);
       const cv::Mat gray = biovision_v1::InputImage(input).gray();
       const cv::Size size = gray.size();
       // Detection on a smaller copy: the thesis' detectors ran on salient regions of a 1024x768 capture;
@@ -464,6 +467,10 @@ void HriNodelet::details(diagnostic_updater::DiagnosticStatusWrapper& status)
   status.add("last action", last_action_);
   std::lock_guard<std::mutex> head_lock(head_mode_mutex_);
   status.add("head/set_mode", head_mode_answer_.empty() ? "not called" : head_mode_answer_);
+  // A configured gesture method that could not be loaded stays a warning (the ERROR at start passes).
+  for (const std::string* off : {&gestures_off_, &posture_off_})
+    if (!off->empty())
+      status.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN, *off);
 }
 }  // namespace biovision_hri
 

@@ -72,6 +72,8 @@ private:
   ros::WallTimer head_mode_timer_;
   std::string pan_joint_, tilt_joint_;
   double max_input_age_ = 0.5;
+  size_t max_input_pixels_ = 0;             // ~max_input_pixels: larger images are refused (bounded memory and time)
+  std::string gestures_off_, posture_off_;  // why a configured gesture method is off ("" = on or not asked for)
 
   std::mutex mutex_;  // guards everything below
   std::unique_ptr<SlidingWindowDetector> face_detector_, hand_detector_;

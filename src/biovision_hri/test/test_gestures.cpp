@@ -4,56 +4,26 @@
 #include <opencv2/imgproc.hpp>
 
 #include "biovision_common/stored_file.hpp"
+#include "biovision_common/synthetic_images.hpp"
 #include "biovision_hri/gesture_recognizer.hpp"
 
 using namespace biovision_hri;
 
 namespace
 {
-/// A synthetic "hand posture": random filled shapes and lines of random grey levels (distinct per seed).
+using biovision_common::SyntheticImages;
+
+/// A synthetic "hand posture": random shapes (distinct per seed).
 cv::Mat posture(int size, unsigned seed)
 {
-  cv::Mat img(size, size, CV_32F, cv::Scalar(0.5));
-  cv::RNG rng(seed);
-  for (int i = 0; i < 40; ++i)
-  {
-    const cv::Point c(rng.uniform(0, size), rng.uniform(0, size));
-    const double v = rng.uniform(0.05, 0.95);
-    if (i % 3 == 0)
-      cv::circle(img, c, rng.uniform(3, size / 6), v, cv::FILLED);
-    else if (i % 3 == 1)
-      cv::rectangle(img, cv::Rect(c.x, c.y, rng.uniform(4, size / 4), rng.uniform(4, size / 4)), v, cv::FILLED);
-    else
-      cv::line(img, c, cv::Point(rng.uniform(0, size), rng.uniform(0, size)), v, rng.uniform(1, 4));
-  }
-  cv::GaussianBlur(img, img, cv::Size(), 0.8);
-  return img;
-}
-
-cv::Mat background(int w, int h, unsigned seed)
-{
-  cv::Mat n(h, w, CV_32F);
-  cv::RNG rng(seed);
-  rng.fill(n, cv::RNG::NORMAL, 0.5, 0.08);
-  cv::GaussianBlur(n, n, cv::Size(), 6.0);
-  cv::normalize(n, n, 0.35, 0.65, cv::NORM_MINMAX);
-  return n;
+  return SyntheticImages::randomShapes(size, seed);
 }
 
 /// The posture rotated by `degrees` and scaled by `scale` about its centre, pasted at `at` into a scene.
 cv::Mat scene(const cv::Mat& object, double degrees, double scale, cv::Point at, cv::Rect* where)
 {
-  cv::Mat out = background(320, 240, 99);
-  const cv::Point2f c(object.cols / 2.f, object.rows / 2.f);
-  const int side = cvRound(object.cols * scale);
-  cv::Mat m = cv::getRotationMatrix2D(c, degrees, scale);
-  m.at<double>(0, 2) += side / 2.0 - c.x;
-  m.at<double>(1, 2) += side / 2.0 - c.y;
-  cv::Mat warped;
-  cv::warpAffine(object, warped, m, cv::Size(side, side), cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar(0.5));
-  *where = cv::Rect(at.x, at.y, side, side);
-  warped.copyTo(out(*where));
-  return out;
+  return SyntheticImages::paste(object, SyntheticImages::smoothNoise({320, 240}, 99), degrees, scale, at,
+                                cv::BORDER_CONSTANT, where);
 }
 
 std::shared_ptr<const biovision_recognition::V1Descriptor> descriptor()

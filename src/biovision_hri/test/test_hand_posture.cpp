@@ -9,6 +9,7 @@
 #include "biovision_common/payload_reader.hpp"
 #include "biovision_common/payload_writer.hpp"
 #include "biovision_common/stored_file.hpp"
+#include "biovision_common/synthetic_images.hpp"
 #include "biovision_hri/hand_posture_classifier.hpp"
 
 using namespace biovision_hri;
@@ -34,28 +35,14 @@ cv::Mat posture(int size, int fingers)
 
 cv::Mat texture(int w, int h, unsigned seed)
 {
-  cv::Mat n(h, w, CV_32F);
-  cv::RNG rng(seed);
-  rng.fill(n, cv::RNG::NORMAL, 0.5, 0.2);
-  cv::GaussianBlur(n, n, cv::Size(), 2.0);
-  cv::normalize(n, n, 0.1, 0.9, cv::NORM_MINMAX);
-  return n;
+  return biovision_common::SyntheticImages::smoothNoise({w, h}, seed, 0.2, 2.0, 0.1, 0.9);
 }
 
 /// The posture rotated and scaled about its centre, pasted at `at` into a 320x240 textured scene.
 cv::Mat scene(const cv::Mat& object, double degrees, double scale, cv::Point at, cv::Rect* where)
 {
-  cv::Mat out = texture(320, 240, 7);
-  const int side = cvRound(object.cols * scale);
-  const cv::Point2f c(object.cols / 2.f, object.rows / 2.f);
-  cv::Mat m = cv::getRotationMatrix2D(c, degrees, scale);
-  m.at<double>(0, 2) += side / 2.0 - c.x;
-  m.at<double>(1, 2) += side / 2.0 - c.y;
-  cv::Mat warped;
-  cv::warpAffine(object, warped, m, cv::Size(side, side), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
-  *where = cv::Rect(at.x, at.y, side, side);
-  warped.copyTo(out(*where));
-  return out;
+  return biovision_common::SyntheticImages::paste(object, texture(320, 240, 7), degrees, scale, at,
+                                                  cv::BORDER_REPLICATE, where);
 }
 
 HandPostureClassifier trained()

@@ -4,6 +4,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "biovision_common/synthetic_images.hpp"
 #include "biovision_recognition/geometric_verifier.hpp"
 #include "biovision_recognition/object_recognizer.hpp"
 
@@ -14,36 +15,12 @@ namespace
 /// A distinctive synthetic "object": random filled shapes and lines of random grey levels.
 cv::Mat objectImage(int size, unsigned seed)
 {
-  cv::Mat img(size, size, CV_32F, cv::Scalar(0.5));
-  cv::RNG rng(seed);
-  for (int i = 0; i < 40; ++i)
-  {
-    const cv::Point c(rng.uniform(0, size), rng.uniform(0, size));
-    const double v = rng.uniform(0.05, 0.95);
-    switch (i % 3)
-    {
-      case 0:
-        cv::circle(img, c, rng.uniform(3, size / 6), v, cv::FILLED);
-        break;
-      case 1:
-        cv::rectangle(img, cv::Rect(c.x, c.y, rng.uniform(4, size / 4), rng.uniform(4, size / 4)), v, cv::FILLED);
-        break;
-      default:
-        cv::line(img, c, cv::Point(rng.uniform(0, size), rng.uniform(0, size)), v, rng.uniform(1, 4));
-    }
-  }
-  cv::GaussianBlur(img, img, cv::Size(), 0.8);
-  return img;
+  return biovision_common::SyntheticImages::randomShapes(size, seed);
 }
 
 cv::Mat background(int w, int h, unsigned seed)
 {
-  cv::Mat n(h, w, CV_32F);
-  cv::RNG rng(seed);
-  rng.fill(n, cv::RNG::NORMAL, 0.5, 0.08);
-  cv::GaussianBlur(n, n, cv::Size(), 6.0);
-  cv::normalize(n, n, 0.35, 0.65, cv::NORM_MINMAX);
-  return n;
+  return biovision_common::SyntheticImages::smoothNoise({w, h}, seed);
 }
 
 std::shared_ptr<const V1Descriptor> trainedDescriptor()

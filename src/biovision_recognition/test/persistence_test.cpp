@@ -325,25 +325,27 @@ TEST_F(Persistence, KillDuringSavesLosesNothingAcknowledgedAndLeavesNoDebris)
         }
       }
     });
-    const std::string debris = memory_file_ + ".tmp." + std::to_string(node->pid());
+    // A save's temporary is objects.bin.tmp.<pid>.<n> (writeFileAtomically).
+    const std::string debris_prefix = "objects.bin.tmp." + std::to_string(node->pid()) + ".";
+    const auto debris_left = [&] { return !filesStartingWith(dir_, debris_prefix).empty(); };
     if (kills % 2 == 0)
       std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(rng)));
     else
     {
       const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(4);
-      while (std::chrono::steady_clock::now() < until && (round_acks == 0 || !fs::exists(debris)))
+      while (std::chrono::steady_clock::now() < until && (round_acks == 0 || !debris_left()))
         std::this_thread::sleep_for(std::chrono::microseconds(200));
     }
     node->kill(SIGKILL);
     killed = true;
     learner.join();
     ++kills;
-    if (fs::exists(debris))
+    if (debris_left())
       ++temporaries_left;
     else
     {
       // This kill missed the save: leave what a kill inside it leaves, so every restart is tested on debris.
-      writeFile(debris, std::string(4096, 'x'));
+      writeFile(dir_ + "/" + debris_prefix + "0", std::string(4096, 'x'));
       ++planted;
     }
   }

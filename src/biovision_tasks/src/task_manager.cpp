@@ -164,10 +164,14 @@ bool TaskManager::obstacleInFront(const Percept& p) const
   const double r = parameters_.greet_distance, cell = m.cellSize();
   if (m.empty() || r <= 0)
     return false;
-  const int c0 = std::max(0, int(std::floor((p.pose.x - r - m.originX()) / cell)));
-  const int c1 = std::min(m.cells().cols - 1, int(std::floor((p.pose.x + r - m.originX()) / cell)));
-  const int r0 = std::max(0, int(std::floor((p.pose.y - r - m.originY()) / cell)));
-  const int r1 = std::min(m.cells().rows - 1, int(std::floor((p.pose.y + r - m.originY()) / cell)));
+  // Clamped as doubles first: a pose far outside the map must not overflow the int conversion.
+  const auto index = [cell](double v, double origin, int size) {
+    return int(std::clamp(std::floor((v - origin) / cell), -1.0, double(size)));
+  };
+  const int c0 = std::max(0, index(p.pose.x - r, m.originX(), m.cells().cols));
+  const int c1 = std::min(m.cells().cols - 1, index(p.pose.x + r, m.originX(), m.cells().cols));
+  const int r0 = std::max(0, index(p.pose.y - r, m.originY(), m.cells().rows));
+  const int r1 = std::min(m.cells().rows - 1, index(p.pose.y + r, m.originY(), m.cells().rows));
   for (int row = r0; row <= r1; ++row)
     for (int col = c0; col <= c1; ++col)
     {

@@ -1132,6 +1132,12 @@ TEST(TaskManager, AnObstacleInFrontWhileDrivingStartsOneGreetThenTheCooldownHold
   sideways.step(near(1, 0.5, M_PI / 2));
   EXPECT_NE(sideways.status().macro_task, "greet (obstacle in front)");
 
+  TaskManager far(p);  // a pose far outside the map: nothing in front (and no int overflow on the way)
+  far.add(spec("go_to x=4 y=0"));
+  far.step(near(0, 1e20, 0));
+  far.step(near(1, -1e20, 0));
+  EXPECT_EQ(far.status().macro_task, "go_to (4, 0)");
+
   TaskManager off;  // greet_distance 0 (the default): never
   off.add(spec("go_to x=4 y=0"));
   off.step(near(0, 0.5, 0));

@@ -10,6 +10,7 @@
 #include "biovision_common/payload_writer.hpp"
 #include "biovision_common/stored_file.hpp"
 #include "biovision_common/synthetic_images.hpp"
+#include "biovision_hri/hand_gesture_reader.hpp"
 #include "biovision_hri/hand_posture_classifier.hpp"
 
 using namespace biovision_hri;
@@ -247,4 +248,53 @@ TEST(HandPostureClassifier, AFlatOrHugeOrNonFiniteRegionIsNoGesture)
     EXPECT_EQ(r.label, "") << box;
     EXPECT_EQ(r.best_label, "") << box;
   }
+}
+
+TEST(HandGestureReader, KeypointsFirstThenPostureSvmsEachOnItsOwnBox)
+{
+  auto descriptor = std::make_shared<const biovision_recognition::V1Descriptor>(
+      biovision_recognition::DescriptorModel::load(BIOVISION_RECOGNITION_MODEL));
+  GestureRecognizer keypoints(descriptor, GestureRecognizer::Parameters());
+  const cv::Mat shapes = biovision_common::SyntheticImages::randomShapes(100, 1);
+  cv::Rect where;
+  const cv::Mat learn = scene(shapes, 0.0, 1.0, {60, 50}, &where);
+  ASSERT_GT(keypoints.addTemplate(learn, where, "shapes"), 10u);
+  HandPostureClassifier postures = trained();
+
+  cv::Rect shapes_box, posture_box;
+  const cv::Mat shapes_scene = scene(shapes, 4.0, 1.0, {150, 70}, &shapes_box);
+  const cv::Mat posture_scene = scene(posture(90, 2), 0.0, 1.0, {150, 70}, &posture_box);
+  const cv::Rect none;  // an empty box: that method reads no gesture
+
+  const HandGestureReader both(&keypoints, &postures);
+  // The keypoints read it: the SVMs (which cannot say "shapes") are not asked, and the box each
+  // method gets is its own.
+  auto r = both.read(shapes_scene, {shapes_box}, {none});
+  ASSERT_EQ(r.size(), 1u);
+  EXPECT_EQ(r[0].result.label, "shapes");
+  EXPECT_EQ(r[0].method, HandGestureReader::kKeypoints);
+  // The keypoints leave the posture without a gesture: the SVMs read it on their box.
+  r = both.read(posture_scene, {posture_box}, {posture_box});
+  EXPECT_EQ(r[0].result.label, "f2");
+  EXPECT_EQ(r[0].method, HandGestureReader::kPostureSvm);
+  r = both.read(posture_scene, {posture_box}, {none});
+  EXPECT_EQ(r[0].result.label, "");
+  EXPECT_EQ(r[0].method, HandGestureReader::kPostureSvm);
+  // Several hands at once, in order.
+  r = both.read(posture_scene, {none, posture_box}, {posture_box, none});
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_EQ(r[0].result.label, "f2");
+  EXPECT_EQ(r[1].result.label, "");
+
+  // Either method off.
+  EXPECT_EQ(HandGestureReader(nullptr, &postures).read(posture_scene, {none}, {posture_box})[0].result.label, "f2");
+  r = HandGestureReader(&keypoints, nullptr).read(posture_scene, {posture_box}, {posture_box});
+  EXPECT_EQ(r[0].result.label, "");
+  EXPECT_EQ(r[0].method, HandGestureReader::kKeypoints);
+  r = HandGestureReader(nullptr, nullptr).read(posture_scene, {posture_box}, {posture_box});
+  EXPECT_EQ(r[0].result.label, "");
+  EXPECT_EQ(r[0].method, "");
+
+  EXPECT_TRUE(both.read(posture_scene, {}, {}).empty());
+  EXPECT_THROW(both.read(posture_scene, {posture_box}, {}), std::invalid_argument);
 }

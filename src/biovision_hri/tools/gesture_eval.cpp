@@ -16,6 +16,7 @@
 
 #include "biovision_common/tool_options.hpp"
 #include "biovision_hri/gesture_recognizer.hpp"
+#include "biovision_hri/hand_gesture_reader.hpp"
 #include "biovision_hri/hand_posture_classifier.hpp"
 #include "hri_datasets.hpp"
 
@@ -179,11 +180,11 @@ int main(int argc, char** argv)
       auto appearance = [&](const cv::Mat& image, const cv::Rect& box) {
         return classifier.classify(image, {box}).front();
       };
+      const HandGestureReader node_rule(&recognizer, &classifier);
       evaluate("keypoints", run, keypoints);
       evaluate("posture_svm", run, appearance);
       evaluate("keypoints_then_posture_svm", run, [&](const cv::Mat& image, const cv::Rect& box) {
-        const GestureResult k = keypoints(image, box);
-        return k.label.empty() ? appearance(image, box) : k;
+        return node_rule.read(image, {box}, {box}).front().result;
       });
     }
     if (!json_path.empty())

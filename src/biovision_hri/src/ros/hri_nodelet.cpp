@@ -11,6 +11,7 @@
 #include <std_msgs/Float64.h>
 #include <std_msgs/String.h>
 
+#include "biovision_hri/hand_gesture_reader.hpp"
 #include "biovision_hri/non_maximum_suppression.hpp"
 #include "biovision_ros_common/image_message_converter.hpp"
 #include "biovision_v1/input_image.hpp"
@@ -371,26 +372,15 @@ void HriNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
             cv::Rect(cv::Rect2f(c.x - box.width * g / 2, c.y - box.height * g / 2, box.width * g, box.height * g)));
       }
       std::vector<std::string> labels;
-      // Keypoint templates first (they verify geometry); a box they leave without a gesture goes to the
-      // posture SVMs (gesture_eval's keypoints_then_posture_svm, the best on validation: README), which
-      // were trained on hand boxes as annotated, so they get the box as detected.
-      std::vector<GestureResult> results(hand_boxes.size());
-      if (gestures_ && !hand_boxes.empty())
-        results = gestures_->recognize(gray, hand_boxes);
-      std::vector<const char*> methods(results.size(), "keypoints");
-      if (posture_)
-        for (size_t i = 0; i < results.size(); ++i)
-          if (results[i].label.empty())
-          {
-            results[i] = posture_->classify(gray, {detected_boxes[i]}).front();
-            methods[i] = "posture_svm";
-          }
-      for (size_t i = 0; i < results.size(); ++i)
-        if (const GestureResult& g = results[i]; !g.label.empty())
+      // The keypoint boxes are enlarged (templates were cut with context); the posture SVMs were trained
+      // on hand boxes as annotated, so they get the box as detected.
+      const HandGestureReader reader(gestures_.get(), posture_.get());
+      for (const GestureReading& r : reader.read(gray, hand_boxes, detected_boxes))
+        if (const GestureResult& g = r.result; !g.label.empty())
         {
           biovision_msgs::Gesture m;
           m.label = g.label;
-          m.method = methods[i];
+          m.method = r.method;
           m.score = static_cast<float>(g.score);
           m.box = toRoi(cv::Rect2f(g.box), size);
           gestures_msg->gestures.push_back(m);

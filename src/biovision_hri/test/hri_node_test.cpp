@@ -186,6 +186,34 @@ TEST_F(HriNode, GreetLooksUpAndTurnsTowardsTheFaceWithinTheLimits)
   EXPECT_TRUE(waitFor([&] { return modes.size() >= 2; }, 5.0));
   EXPECT_EQ(modes.back(), "explore");
 }
+
+TEST_F(HriNode, AGreetingSubscribesTheImageThoughNobodyListensAndLetsItGoWhenStopped)
+{
+  ASSERT_TRUE(waitFor([&] { return image_pub_.getNumSubscribers() == 0; }, 5.0)) << "lazy: nobody listens";
+  TopicProbe<std_msgs::Float64> tilt(nh_, "head_tilt_joint/command");  // not a lazy output
+  std_srvs::Trigger trigger;
+  ASSERT_TRUE(ros::service::call("hri/greet", trigger));
+  EXPECT_TRUE(trigger.response.success) << trigger.response.message;
+  ASSERT_TRUE(waitFor([&] { return image_pub_.getNumSubscribers() > 0; }, 5.0))
+      << "the greeting needs the images: " << trigger.response.message;
+  sensor_msgs::JointState js;
+  js.name = {"head_pan_joint", "head_tilt_joint"};
+  js.position = {0.0, 0.3};
+  const auto image = message(faceScene(cv::Rect(120, 80, 84, 84)));
+  // The behaviour runs on the images alone: it looks up (tilt commands) with no hri/* subscriber.
+  EXPECT_TRUE(waitFor(
+      [&] {
+        joints_pub_.publish(js);
+        image->header.stamp = ros::Time::now();
+        image_pub_.publish(image);
+        ros::WallDuration(0.2).sleep();
+        return tilt.count() > 0;
+      },
+      20.0))
+      << "no tilt command while greeting";
+  ASSERT_TRUE(ros::service::call("hri/stop_greet", trigger));
+  EXPECT_TRUE(waitFor([&] { return image_pub_.getNumSubscribers() == 0; }, 5.0)) << "the images are let go";
+}
 }  // namespace
 
 int main(int argc, char** argv)

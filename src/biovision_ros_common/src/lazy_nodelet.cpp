@@ -51,21 +51,27 @@ bool LazyNodelet::anyListener() const
   return false;
 }
 
+void LazyNodelet::setBusy(bool busy)
+{
+  if (busy_.exchange(busy) != busy)
+    connectionChanged();
+}
+
 void LazyNodelet::connectionChanged()
 {
   std::lock_guard<std::mutex> lock(connection_mutex_);
   if (!initialised_)
     return;
-  const bool wanted = !lazy_ || anyListener();
+  const bool wanted = !lazy_ || busy_ || anyListener();
   if (wanted && !subscribed_)
   {
-    NODELET_DEBUG("a listener came: subscribing to the inputs");
+    NODELET_DEBUG("a listener came (or work started): subscribing to the inputs");
     subscribe();
     subscribed_ = true;
   }
   else if (!wanted && subscribed_)
   {
-    NODELET_DEBUG("no listeners: unsubscribing from the inputs");
+    NODELET_DEBUG("no listeners and no work: unsubscribing from the inputs");
     unsubscribe();
     subscribed_ = false;
   }

@@ -149,7 +149,12 @@ void HriNodelet::onInitNodelet()
   head_mode_client_ = std::make_unique<biovision_ros_common::AsyncServiceClient<biovision_msgs::SetHeadMode>>(
       nh, "head/set_mode", 2.0);
   // Sends what images did not (a mode asked for while no image comes, a retry after a failed call).
-  head_mode_timer_ = nh.createWallTimer(ros::WallDuration(0.5), [this](const ros::WallTimerEvent&) { sendHeadMode(); });
+  // Also lets the images go when a greeting has ended and nobody listens (not from imageCallback: unsubscribing
+  // there would wait for that very callback).
+  head_mode_timer_ = nh.createWallTimer(ros::WallDuration(0.5), [this](const ros::WallTimerEvent&) {
+    sendHeadMode();
+    updateBusy();
+  });
 }
 
 void HriNodelet::subscribe()
@@ -218,12 +223,24 @@ void HriNodelet::jointCallback(const sensor_msgs::JointStateConstPtr& msg)
 
 bool HriNodelet::greet(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res)
 {
-  std::lock_guard<std::mutex> lock(mutex_);
-  start_requested_ = true;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    start_requested_ = true;
+  }
+  setBusy(true);  // the greeting needs the images though nobody may listen to hri/* (mutex_ released first)
   res.success = true;
-  res.message = isSubscribed() ? "greeting: looking up for a face"
-                               : "greeting requested, but no image is subscribed (nobody listens and ~lazy is true)";
+  res.message = "greeting: looking up for a face";
   return true;
+}
+
+void HriNodelet::updateBusy()
+{
+  bool greeting;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    greeting = start_requested_ || behaviour_->state() != GreetBehaviour::State::Idle;
+  }
+  setBusy(greeting);
 }
 
 bool HriNodelet::stopGreet(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res)
@@ -238,6 +255,7 @@ bool HriNodelet::stopGreet(std_srvs::Trigger::Request&, std_srvs::Trigger::Respo
   }
   if (was_active)
     setHeadMode("explore");
+  updateBusy();
   res.success = true;
   res.message = was_active ? "stopped" : "was idle";
   return true;

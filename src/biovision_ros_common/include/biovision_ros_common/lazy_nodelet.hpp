@@ -1,5 +1,6 @@
 #pragma once
 
+#include <atomic>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -46,6 +47,11 @@ protected:
 
   /// True while the inputs are subscribed.
   bool isSubscribed() const { return subscribed_; }
+  /// Keeps the inputs subscribed while `busy` though nobody listens to an output: a behaviour started
+  /// by a service (hri/greet) needs its images whether or not its topics have subscribers. Takes the
+  /// connection lock and may call subscribe()/unsubscribe(): call it without holding a lock an input
+  /// callback takes (unsubscribing waits for a running callback).
+  void setBusy(bool busy);
   /// Transport hints for image inputs: "raw", overridable per node by ~image_transport.
   image_transport::TransportHints imageHints();
 
@@ -59,6 +65,7 @@ private:
   std::vector<ros::Publisher> publishers_;
   std::vector<image_transport::Publisher> image_publishers_;
   bool lazy_ = true;
+  std::atomic<bool> busy_{false};
   bool initialised_ = false;
   bool subscribed_ = false;
 };

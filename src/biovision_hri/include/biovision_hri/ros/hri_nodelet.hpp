@@ -49,6 +49,8 @@ private:
   void jointCallback(const sensor_msgs::JointStateConstPtr& msg);
   bool greet(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   bool stopGreet(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+  /// Keeps the images subscribed while a greeting is requested or runs (LazyNodelet::setBusy); takes mutex_.
+  void updateBusy();
   void reconfigure(HriConfig& config, uint32_t level);
   void details(diagnostic_updater::DiagnosticStatusWrapper& status);
   /// Asks the head controller for `mode` (head/set_mode, off this thread); sent by sendHeadMode().

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "biovision_tasks/grid_planner.hpp"
+
 namespace biovision_tasks
 {
 GoToTask::GoToTask(std::string name, Goal goal, std::shared_ptr<MissionRecord> record, TaskParameters parameters,
@@ -113,20 +115,7 @@ TaskState GoToTask::onConclude(const Percept& percept)
     // The follower's fixed route is the trail back: retraced once.
     if (goal_.target == Target::Home && !path_.followingRoute() && percept.pose_valid && !percept.base_fault)
     {
-      auto route = record_->wayBack({percept.pose.x, percept.pose.y});
-      // Not through what the map now holds on the trail (the new obstacle of the experiment): make demo's
-      // base, trapped beside the new crate, was sent to a trail point inside it and trapped again.
-      if (!percept.map.empty() && route.size() > 2)
-      {
-        const cv::Mat1b blocked = percept.map.inflatedObstacles(parameters_.occupied_threshold,
-                                                                parameters_.robot_radius);
-        route.erase(std::remove_if(route.begin(), route.end() - 1,
-                                   [&](const cv::Point2d& q) {
-                                     int r, c;
-                                     return percept.map.cellOf(q.x, q.y, r, c) && blocked(r, c);
-                                   }),
-                    route.end() - 1);
-      }
+      const auto route = trailBack(percept);
       if (route.size() >= 2)
       {
         path_.followRoute(route);
@@ -143,6 +132,41 @@ TaskState GoToTask::onConclude(const Percept& percept)
     return fail(why.str());
   }
   return TaskState::Running;
+}
+
+std::vector<cv::Point2d> GoToTask::trailBack(const Percept& percept) const
+{
+  const cv::Point2d here(percept.pose.x, percept.pose.y);
+  std::vector<cv::Point2d> trail = record_->wayBack(here);
+  if (percept.map.empty() || trail.size() <= 2)
+    return trail;
+  // Not through what the map now holds on the trail (the new obstacle of the experiment): no trail point
+  // within the base's corridor (robot_radius + squeeze_margin, as its attractor dynamics keep) of it, and
+  // a stretch whose straight line comes that near is bridged by a plan round it. make demo's base, trapped beside the new crate, was sent
+  // to a trail point inside it, then (those dropped) straight past its corner, and trapped again.
+  const cv::Mat1b near = percept.map.inflatedObstacles(parameters_.occupied_threshold,
+                                                       parameters_.robot_radius + parameters_.squeeze_margin);
+  trail.erase(std::remove_if(trail.begin(), trail.end() - 1,
+                             [&](const cv::Point2d& q) {
+                               int r, c;
+                               return percept.map.cellOf(q.x, q.y, r, c) && near(r, c);
+                             }),
+              trail.end() - 1);
+  const GridPlanner::Options options = GridPlanner::optionsFor(parameters_);
+  std::vector<cv::Point2d> route;
+  cv::Point2d from = here;
+  for (const cv::Point2d& to : trail)
+  {
+    if (!GridPlanner::lineOfSight(percept.map, near, from, to))
+    {
+      const auto detour = GridPlanner::plan(percept.map, from, to, options);
+      if (!detour.empty())
+        route.insert(route.end(), detour.begin(), detour.end() - 1);  // `to` follows
+    }
+    route.push_back(to);
+    from = to;
+  }
+  return route;
 }
 
 void GoToTask::onAct(const Percept& percept, MotorCommand& command)

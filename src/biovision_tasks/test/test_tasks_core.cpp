@@ -677,6 +677,55 @@ TEST(GoToTask, ReturnHomeRetracesTheTrailRoundWhatTheMapNowHoldsOnIt)
   EXPECT_LT(c.goal_x, 3.0);
 }
 
+TEST(GoToTask, TheTrailBackGoesRoundTheNewObstacleNotStraightPastIt)
+{
+  // As above: the crate on the trail at (2.0, 2.0). Once the trail is taken, the base drives to each goal it
+  // is given; no stretch between them may take its body over the crate (make demo: the trail points near
+  // the crate dropped, the base was sent straight past its corner and trapped again).
+  TaskParameters p;
+  p.trapped_timeout = 5;
+  TaskManager m(p);
+  double t = driveTheTrailOut(m);
+  cv::Mat1b cells(50, 50, uchar(0));
+  cells(cv::Rect(28, 28, 4, 4)).setTo(100);  // x, y in [1.8, 2.2)
+  Percept percept = at(t, 3.0, 2.0);
+  percept.map = OccupancyMap(cells, -1.0, -1.0, 0.1);
+  percept.base_trapped = true;
+  MotorCommand c;
+  for (const double start = t; t < start + 5.75; t += 0.5)
+  {
+    percept.time = t;
+    c = m.step(percept);
+  }
+  ASSERT_TRUE(m.finished().empty()) << m.finished().back().reason;
+  auto clearance = [](cv::Point2d a, cv::Point2d b) {  // least distance of the segment a-b to the crate
+    double least = INFINITY;
+    for (int i = 0; i <= 200; ++i)
+    {
+      const cv::Point2d q = a + (b - a) * (i / 200.0);
+      least = std::min(least,
+                       std::hypot(std::max(std::abs(q.x - 2.0) - 0.2, 0.0), std::max(std::abs(q.y - 2.0) - 0.2, 0.0)));
+    }
+    return least;
+  };
+  percept.base_trapped = false;
+  cv::Point2d here(3.0, 2.0);
+  int goals = 0;
+  for (; goals < 100 && m.finished().empty(); ++goals, t += 0.5)
+  {
+    ASSERT_EQ(c.base, MotorCommand::Base::Goal);
+    const cv::Point2d goal(c.goal_x, c.goal_y);
+    EXPECT_GT(clearance(here, goal), p.robot_radius) << "from " << here << " to " << goal;
+    here = goal;  // the base drives there
+    percept.time = t;
+    percept.pose = {here.x, here.y, 0.0};
+    c = m.step(percept);
+  }
+  ASSERT_FALSE(m.finished().empty()) << "home never reached";
+  EXPECT_EQ(m.finished().back().state, TaskState::Succeeded) << m.finished().back().reason;
+  EXPECT_GT(goals, 2);
+}
+
 TEST(MissionRecord, TheTrailIsSpacedBoundedAndItsWayBackCutsLoops)
 {
   MissionRecord r;

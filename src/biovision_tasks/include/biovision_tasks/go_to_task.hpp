@@ -61,6 +61,11 @@ private:
   bool resolve(const Percept& percept, std::string& why);
   /// Where the base is sent: the place, or an object's approach point facing the robot.
   cv::Point2d aimPoint(const Percept& percept) const;
+  /// The trail driven, back from the base to home (MissionRecord::wayBack) and round what the map now
+  /// holds on it: its points within robot_radius + squeeze_margin of an obstacle dropped, and a stretch
+  /// whose straight line comes that near one (from the base to the first point too) replaced by a
+  /// GridPlanner plan (kept straight when there is none). [m, map]
+  std::vector<cv::Point2d> trailBack(const Percept& percept) const;
 
   Goal goal_;
   std::shared_ptr<MissionRecord> record_;

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
 
 #include "biovision_common/path_plot.hpp"
 
@@ -100,4 +101,26 @@ TEST(PathPlot, LabelsStayInsideTheImageAndOffTheTitle)
   EXPECT_GT(high.y, 30);
   // A label wider than the room on either side starts at the left edge.
   EXPECT_EQ(PathPlot::labelOrigin({20, 300}, cv::Size(710, 10), image, 24).x, 2);
+}
+
+TEST(PathPlot, ALabelMovesOffTakenPlacesAndOffThePath)
+{
+  const cv::Size image(720, 560), text(60, 10);
+  const cv::Point mark(300, 300);
+  const cv::Point first = PathPlot::labelOrigin(mark, text, image, 24);
+  const cv::Rect first_box(first.x, first.y - text.height, text.width, text.height + 3);
+  // Its first place taken (another label there): the other side of the mark.
+  const cv::Point moved = PathPlot::labelOrigin(mark, text, image, 24, {first_box});
+  EXPECT_EQ(moved, cv::Point(300 - 8 - 60, first.y));
+  // Both sides above taken: below the mark.
+  const cv::Rect left_box(moved.x, moved.y - text.height, text.width, text.height + 3);
+  const cv::Point below = PathPlot::labelOrigin(mark, text, image, 24, {first_box, left_box});
+  EXPECT_GT(below.y, mark.y);
+  // A path through the first place: moved off it.
+  cv::Mat path(image, CV_8UC1, cv::Scalar(0));
+  cv::line(path, {first_box.x, first_box.y + 5}, {first_box.br().x, first_box.y + 5}, cv::Scalar(255), 2);
+  EXPECT_NE(PathPlot::labelOrigin(mark, text, image, 24, {}, path), first);
+  // Every place taken: the one overlapping least (here the first, on a tie).
+  const cv::Rect everywhere(0, 0, 720, 560);
+  EXPECT_EQ(PathPlot::labelOrigin(mark, text, image, 24, {everywhere}), first);
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include <biovision_attractor/forcelets.hpp>
 #include <opencv2/imgproc.hpp>
@@ -186,12 +187,20 @@ cv::Mat AttractorPlot::render(const AttractorView& s, cv::Size size, Axes* axes_
     cv::circle(image, p, 5, colours::kCurrent, cv::FILLED, cv::LINE_AA);
     cv::circle(image, p, 5, colours::kAxis, 1, cv::LINE_AA);
   }
-  const std::string title = (s.controller.empty() ? std::string("attractor") : s.controller) +
-                            (s.behaviour.empty() ? "" : " (" + s.behaviour + ")") + "  phi " +
-                            formatNumber(s.angle / kDeg, 0) + " deg, dphi/dt " + formatNumber(s.rate, 2) + " rad/s";
-  // Inside the plot area's top: a panel's tile title covers the image's top rows.
-  cv::putText(image, title, {axes.area.x + 3, axes.area.y + 11}, cv::FONT_HERSHEY_SIMPLEX, 0.33, colours::kAxis, 1,
-              cv::LINE_AA);
+  const std::string name = (s.controller.empty() ? std::string("attractor") : s.controller) +
+                           (s.behaviour.empty() ? "" : " (" + s.behaviour + ")"),
+                    state = "phi " + formatNumber(s.angle / kDeg, 0) + " deg, dphi/dt " + formatNumber(s.rate, 2) +
+                            " rad/s";
+  // Inside the plot area's top: a panel's tile title covers the image's top rows. On two lines where one
+  // would run out of the plot (a panel tile's plot cut "rad/s" off).
+  constexpr double kFont = 0.33;
+  int baseline = 0;
+  const std::string line = name + "  " + state;
+  const bool fits = cv::getTextSize(line, cv::FONT_HERSHEY_SIMPLEX, kFont, 1, &baseline).width <= axes.area.width - 6;
+  const std::vector<std::string> lines = fits ? std::vector<std::string>{line} : std::vector<std::string>{name, state};
+  for (size_t i = 0; i < lines.size(); ++i)
+    cv::putText(image, lines[i], {axes.area.x + 3, axes.area.y + 11 + 11 * static_cast<int>(i)},
+                cv::FONT_HERSHEY_SIMPLEX, kFont, colours::kAxis, 1, cv::LINE_AA);
   if (axes_out)
     *axes_out = axes;
   return image;

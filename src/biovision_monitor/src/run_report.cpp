@@ -190,14 +190,15 @@ cv::Mat pathPicture(const std::string& dir, const nlohmann::json& mission)
   }
   const cv::Scalar kHome(180, 0, 180), kTarget(0, 0, 210), kObstacle(200, 120, 0), kObject(60, 60, 60);
   std::vector<biovision_common::PathPlot::Mark> marks;
+  const std::string target = mission.value("target", std::string("target"));
   for (const auto& o : mission.value("ltm_objects", nlohmann::json::array()))
-    marks.push_back({{o.value("x", NAN), o.value("y", NAN)}, o.value("label", std::string()), kObject, false});
+    if (o.value("label", std::string()) != target)  // drawn below as the target's ring, not labelled twice
+      marks.push_back({{o.value("x", NAN), o.value("y", NAN)}, o.value("label", std::string()), kObject, false});
   if (mission.contains("new_obstacle") && mission["new_obstacle"].is_object() && mission["new_obstacle"].contains("x"))
     marks.push_back({{mission["new_obstacle"].value("x", NAN), mission["new_obstacle"].value("y", NAN)},
                      "new obstacle",
                      kObstacle,
                      true});
-  const std::string target = mission.value("target", std::string("target"));
   marks.push_back({point(mission.value("target_truth", nlohmann::json())), target, kTarget, true});
   marks.push_back({point(mission.value("target_remembered", nlohmann::json())), "", kTarget, false});
   marks.push_back({point(mission.value("home", nlohmann::json())), "home", kHome, true});

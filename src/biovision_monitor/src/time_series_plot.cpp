@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <opencv2/imgproc.hpp>
 
@@ -17,6 +18,23 @@ int TimeSeriesPlot::Axes::column(double t) const
 int TimeSeriesPlot::Axes::row(double y) const
 {
   return area.br().y - 1 - int(std::lround((y - y0) / (y1 - y0) * (area.height - 1)));
+}
+
+std::vector<int> TimeSeriesPlot::labelRows(const std::vector<cv::Range>& spans, int rows, int gap)
+{
+  std::vector<int> ends(std::max(rows, 0), std::numeric_limits<int>::min() / 2), out;
+  for (const cv::Range& s : spans)
+  {
+    const auto free = std::find_if(ends.begin(), ends.end(), [&](int end) { return end + gap <= s.start; });
+    if (free == ends.end())
+    {
+      out.push_back(-1);
+      continue;
+    }
+    *free = s.end;
+    out.push_back(static_cast<int>(free - ends.begin()));
+  }
+  return out;
 }
 
 cv::Mat TimeSeriesPlot::render(const std::vector<cv::Point2d>& points, const std::vector<Mark>& marks,
@@ -58,7 +76,10 @@ cv::Mat TimeSeriesPlot::render(const std::vector<Series>& series, const std::vec
   label(formatNumber(axes.t0, 1) + " s", {axes.area.x, axes.area.br().y + 14});
   label(formatNumber(axes.t1, 1) + " s", {axes.area.br().x - 50, axes.area.br().y + 14});
   cv::putText(image, title, {axes.area.x, 16}, cv::FONT_HERSHEY_SIMPLEX, 0.45, colours::kAxis, 1, cv::LINE_AA);
-  int mark_row = 0;
+  constexpr int kLabelRows = 4;
+  constexpr double kLabelFont = 0.3;
+  std::vector<cv::Range> spans;
+  std::vector<const Mark*> shown;
   for (const Mark& m : marks)
   {
     if (!std::isfinite(m.t) || m.t < axes.t0 || m.t > axes.t1)
@@ -66,10 +87,17 @@ cv::Mat TimeSeriesPlot::render(const std::vector<Series>& series, const std::vec
     const int x = axes.column(m.t);
     for (int y = axes.area.y; y < axes.area.br().y; y += 6)
       cv::line(image, {x, y}, {x, std::min(y + 3, axes.area.br().y - 1)}, colours::kAttraction, 1);
-    cv::putText(image, m.label, {x + 2, axes.area.y + 10 + 10 * (mark_row % 4)}, cv::FONT_HERSHEY_SIMPLEX, 0.3,
-                colours::kAttraction, 1, cv::LINE_AA);
-    ++mark_row;
+    int baseline = 0;
+    const int width = cv::getTextSize(m.label, cv::FONT_HERSHEY_SIMPLEX, kLabelFont, 1, &baseline).width;
+    const int start = x + 2 + width <= axes.area.br().x - 2 ? x + 2 : x - 2 - width;  // right of the line if it fits
+    spans.emplace_back(start, start + width);
+    shown.push_back(&m);
   }
+  const std::vector<int> rows = labelRows(spans, kLabelRows);
+  for (size_t i = 0; i < shown.size(); ++i)
+    if (rows[i] >= 0)
+      cv::putText(image, shown[i]->label, {spans[i].start, axes.area.y + 10 + 10 * rows[i]}, cv::FONT_HERSHEY_SIMPLEX,
+                  kLabelFont, colours::kAttraction, 1, cv::LINE_AA);
   int legend_right = size.width - 10;  // the legend fills the title's row from the right, clear of the marks' labels
   for (const Series& s : series)
   {

@@ -125,6 +125,28 @@ TEST(AttractorPlot, TheBasesGoalIsASineAttractorAtTheTarget)
   EXPECT_LT(pushed.front().angle, -20 * kDeg);
 }
 
+TEST(AttractorPlot, ATitleTooLongForThePlotGoesOnTwoLines)
+{
+  AttractorView s = nineSections();
+  s.angle = 58 * kDeg;
+  s.rate = 0.11;
+  auto dark = [](const cv::Mat& image, const cv::Rect& r) {
+    int n = 0;
+    for (int y = r.y; y < r.br().y; ++y)
+      for (int x = r.x; x < r.br().x; ++x)
+        n += near(image.at<cv::Vec3b>(y, x), colours::kAxis, 150);
+    return n;
+  };
+  AttractorPlot::Axes axes;
+  s.behaviour = "look_ahead";  // "head_pan (look_ahead)  phi 58 deg, dphi/dt 0.11 rad/s": wider than 320 px
+  const cv::Mat two = AttractorPlot(defaults.model("head_pan")).render(s, kSize, &axes);
+  const cv::Rect second_line(axes.area.x + 3, axes.area.y + 14, 60, 9);
+  EXPECT_GT(dark(two, second_line), 10) << "the state on a second line";
+  s.behaviour = "";
+  const cv::Mat one = AttractorPlot(defaults.model("head_pan")).render(s, cv::Size(640, 240), &axes);
+  EXPECT_EQ(dark(one, cv::Rect(axes.area.x + 3, axes.area.y + 14, 60, 9)), 0) << "one line where it fits";
+}
+
 TEST(AttractorPlot, NonFiniteAndMissingValuesDrawNothingWrong)
 {
   AttractorView s = nineSections();
@@ -270,6 +292,34 @@ TEST(TimeSeriesPlot, MarksSitAtTheirTimes)
   const cv::Mat image = TimeSeriesPlot().render({{0, -10}, {10, 30}}, {{5.0, "mug"}}, "pan", cv::Size(400, 200), &axes);
   EXPECT_TRUE(near(image.at<cv::Vec3b>(axes.area.y + 1, axes.column(5.0)), colours::kAttraction));
   EXPECT_EQ(axes.column(0.0), axes.area.x);
+}
+
+TEST(TimeSeriesPlot, MarkLabelsTakeTheFirstFreeRowAndAreLeftOutWhenTheRowsAreFull)
+{
+  // Three overlapping labels take rows 0, 1, 2; one that starts after the first ends (+ gap) reuses row 0;
+  // with two rows the third overlapping one has no room.
+  const std::vector<cv::Range> spans{{10, 60}, {20, 70}, {30, 80}, {63, 90}, {64, 100}};
+  EXPECT_EQ(TimeSeriesPlot::labelRows(spans, 4), (std::vector<int>{0, 1, 2, 0, 3}));
+  EXPECT_EQ(TimeSeriesPlot::labelRows(spans, 2), (std::vector<int>{0, 1, -1, 0, -1}));
+  EXPECT_EQ(TimeSeriesPlot::labelRows(spans, 4, 5), (std::vector<int>{0, 1, 2, 3, -1}));
+  EXPECT_TRUE(TimeSeriesPlot::labelRows({}, 4).empty());
+  EXPECT_EQ(TimeSeriesPlot::labelRows(spans, 0), (std::vector<int>(5, -1)));
+
+  // A mark at the right edge has its label left of its line, inside the plot.
+  TimeSeriesPlot::Axes axes;
+  const cv::Mat image = TimeSeriesPlot().render({{0, -10}, {10, 30}}, {{10.0, "target_box"}}, "pan", cv::Size(400, 200),
+                                                &axes);
+  const int x = axes.column(10.0);
+  cv::Mat left = image(cv::Rect(x - 60, axes.area.y + 1, 56, 10)), right = image(cv::Rect(x + 2, 0, 400 - x - 2, 200));
+  auto green = [](const cv::Mat& m) {
+    int n = 0;
+    for (int r = 0; r < m.rows; ++r)
+      for (int c = 0; c < m.cols; ++c)
+        n += near(m.at<cv::Vec3b>(r, c), colours::kAttraction, 60);
+    return n;
+  };
+  EXPECT_GT(green(left), 10) << "the label is drawn left of the line";
+  EXPECT_EQ(green(right), 0) << "nothing right of the line";
 }
 
 TEST(RunReport, WritesPicturesAndASelfContainedPage)

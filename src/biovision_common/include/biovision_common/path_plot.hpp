@@ -36,9 +36,15 @@ public:
   cv::Mat render(const GridView& grid, cv::Point2d origin, const std::vector<cv::Point2d>& path,
                  const std::vector<Mark>& marks, const std::string& title, cv::Size size) const;
 
-  /// Where a mark's label of `text` px goes (putText's origin, the text's bottom left): right of and above
-  /// the mark at `mark`, moved to its left / below it where it would leave the image or cover the `top` px
-  /// title strip (a target at the map's edge kept its label cut off).
-  static cv::Point labelOrigin(cv::Point mark, cv::Size text, cv::Size image, int top);
+  /// Where a mark's label of `text` px goes (putText's origin, the text's bottom left). The first choice
+  /// is right of and above the mark at `mark`, moved to its left / below it where it would leave the image
+  /// or cover the `top` px title strip (a target at the map's edge kept its label cut off); the other
+  /// three places beside the mark, then the four one text line further out, are tried when the first
+  /// overlaps a rectangle of `taken` (marks and
+  /// labels already drawn) or covers pixels set in `avoid` (CV_8UC1 of the image's size, e.g. the path;
+  /// empty = none): the place overlapping least wins, the earlier on a tie (labels had been drawn over each
+  /// other and over the path).
+  static cv::Point labelOrigin(cv::Point mark, cv::Size text, cv::Size image, int top,
+                               const std::vector<cv::Rect>& taken = {}, const cv::Mat& avoid = cv::Mat());
 };
 }  // namespace biovision_common

@@ -86,23 +86,42 @@ cv::Mat PathPlot::render(const GridView& grid, cv::Point2d origin, const std::ve
   for (const auto& p : path)
     if (std::isfinite(p.x) && std::isfinite(p.y))
       line.push_back(px(p));
+  cv::Mat path_mask(size, CV_8UC1, cv::Scalar(0));  // what labels should not cover
+  std::vector<cv::Rect> taken;
+  auto disc = [&](cv::Point p, int radius) {
+    taken.emplace_back(p.x - radius - 1, p.y - radius - 1, 2 * radius + 3, 2 * radius + 3);
+  };
   if (line.size() >= 2)
+  {
     cv::polylines(image, line, false, kPathColour, 2, cv::LINE_8);
+    cv::polylines(path_mask, line, false, cv::Scalar(255), 2, cv::LINE_8);
+  }
   if (!line.empty())
   {
     cv::circle(image, line.front(), 5, kStartColour, cv::FILLED, cv::LINE_8);
     cv::circle(image, line.back(), 5, kEndColour, cv::FILLED, cv::LINE_8);
+    disc(line.front(), 5);
+    disc(line.back(), 5);
   }
+  // Every mark first, then the labels around them.
+  std::vector<std::pair<cv::Point, const Mark*>> shown;
   for (const auto& m : marks)
+    if (std::isfinite(m.position.x) && std::isfinite(m.position.y))
+    {
+      const cv::Point p = px(m.position);
+      cv::circle(image, p, 6, m.colour, m.filled ? cv::FILLED : 2, cv::LINE_8);
+      disc(p, 6);
+      shown.emplace_back(p, &m);
+    }
+  for (const auto& [p, m] : shown)
   {
-    if (!std::isfinite(m.position.x) || !std::isfinite(m.position.y))
+    if (m->label.empty())
       continue;
-    const cv::Point p = px(m.position);
-    cv::circle(image, p, 6, m.colour, m.filled ? cv::FILLED : 2, cv::LINE_8);
     int baseline = 0;
-    const cv::Size text = cv::getTextSize(m.label, cv::FONT_HERSHEY_SIMPLEX, 0.4, 1, &baseline);
-    cv::putText(image, m.label, labelOrigin(p, text, size, top), cv::FONT_HERSHEY_SIMPLEX, 0.4, m.colour, 1,
-                cv::LINE_AA);
+    const cv::Size text = cv::getTextSize(m->label, cv::FONT_HERSHEY_SIMPLEX, 0.4, 1, &baseline);
+    const cv::Point o = labelOrigin(p, text, size, top, taken, path_mask);
+    cv::putText(image, m->label, o, cv::FONT_HERSHEY_SIMPLEX, 0.4, m->colour, 1, cv::LINE_AA);
+    taken.emplace_back(o.x, o.y - text.height, text.width, text.height + baseline);
   }
   // 1 m scale bar, bottom left.
   const cv::Point bar0(10, size.height - 12), bar1(10 + int(std::lround(scale)), size.height - 12);
@@ -112,15 +131,41 @@ cv::Mat PathPlot::render(const GridView& grid, cv::Point2d origin, const std::ve
   return image;
 }
 
-cv::Point PathPlot::labelOrigin(cv::Point mark, cv::Size text, cv::Size image, int top)
+cv::Point PathPlot::labelOrigin(cv::Point mark, cv::Size text, cv::Size image, int top,
+                                const std::vector<cv::Rect>& taken, const cv::Mat& avoid)
 {
   constexpr int kGap = 8;  // clear of the 6 px mark
-  cv::Point o(mark.x + kGap, mark.y - 6);
-  if (o.x + text.width > image.width - 2)
-    o.x = mark.x - kGap - text.width;
-  if (o.y - text.height < top + 2)
-    o.y = mark.y + kGap + text.height;
-  o.x = std::max(o.x, 2);
-  return o;
+  const int right = mark.x + kGap, left = mark.x - kGap - text.width;
+  const int above = mark.y - 6, below = mark.y + kGap + text.height;
+  const bool right_fits = right + text.width <= image.width - 2, above_fits = above - text.height >= top + 2;
+  // The first choice as it always was; then the other side, the other height, both.
+  const int x0 = right_fits ? right : left, x1 = right_fits ? left : right;
+  const int y0 = above_fits ? above : below, y1 = above_fits ? below : above;
+  const cv::Rect inside(2, top + 2, image.width - 4, image.height - top - 4);
+  cv::Point best;
+  double best_cost = INFINITY;
+  // Beside the mark, then one line further out (clear of a path running along the mark).
+  const int further = text.height + 6, out0 = y0 < mark.y ? -further : further, out1 = -out0;
+  for (const cv::Point o :
+       {cv::Point(x0, y0), cv::Point(x1, y0), cv::Point(x0, y1), cv::Point(x1, y1), cv::Point(x0, y0 + out0),
+        cv::Point(x1, y0 + out0), cv::Point(x0, y1 + out1), cv::Point(x1, y1 + out1)})
+  {
+    const cv::Point c(std::max(o.x, 2), o.y);
+    const cv::Rect box(c.x, c.y - text.height, text.width, text.height + 3);  // + the baseline's descenders
+    double cost = (box & inside) == box ? 0.0 : 1e9;  // a place leaving the image only when all do
+    for (const cv::Rect& t : taken)
+      cost += 100.0 * (box & t).area();
+    if (!avoid.empty() && avoid.size() == image)
+    {
+      const cv::Rect in = box & cv::Rect(0, 0, image.width, image.height);
+      if (in.area() > 0)
+        cost += cv::countNonZero(avoid(in));
+    }
+    if (cost < best_cost)
+      best_cost = cost, best = c;
+    if (cost == 0.0)
+      break;
+  }
+  return best;
 }
 }  // namespace biovision_common

@@ -12,7 +12,8 @@ namespace biovision_monitor
 class TimeSeriesPlot
 {
 public:
-  /// An event at time t [s]: a vertical dashed line and its label.
+  /// An event at time t [s]: a vertical dashed line and its label (in one of 4 rows at the top, left of
+  /// the line near the right edge, left out where the rows are full: labelRows()).
   struct Mark
   {
     double t;
@@ -39,6 +40,12 @@ public:
   /// `size` (at least 160 x 120), with a legend of the labelled series at the top right; otherwise as below.
   cv::Mat render(const std::vector<Series>& series, const std::vector<Mark>& marks, const std::string& title,
                  cv::Size size, Axes* axes = nullptr) const;
+
+  /// The row (0 .. rows - 1) of each mark's label, given the labels' horizontal spans [start, end) in px in
+  /// time order: the first row whose last label ends at least `gap` px before this one starts; -1 when no
+  /// row has room (the label is left out, its mark's line stays). Dense fixations had put labels on top of
+  /// each other.
+  static std::vector<int> labelRows(const std::vector<cv::Range>& spans, int rows, int gap = 3);
 
   /// Renders `points` (x = time [s], y = value; non-finite ones skipped) into a CV_8UC3 image of `size`
   /// (at least 160 x 120): axes with the time and value ranges labelled, `title` at the top, the marks.

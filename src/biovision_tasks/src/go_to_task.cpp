@@ -155,10 +155,12 @@ std::vector<cv::Point2d> GoToTask::trailBack(const Percept& percept) const
   const GridPlanner::Options options = GridPlanner::optionsFor(parameters_);
   std::vector<cv::Point2d> route;
   cv::Point2d from = here;
+  int plans = 0;  // each is an A* over the whole map, inside one task cycle: bounded
   for (const cv::Point2d& to : trail)
   {
-    if (!GridPlanner::lineOfSight(percept.map, near, from, to))
+    if (plans < kMaxTrailDetours && !GridPlanner::lineOfSight(percept.map, near, from, to))
     {
+      ++plans;
       const auto detour = GridPlanner::plan(percept.map, from, to, options);
       if (!detour.empty())
         route.insert(route.end(), detour.begin(), detour.end() - 1);  // `to` follows

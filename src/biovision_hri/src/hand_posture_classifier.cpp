@@ -204,6 +204,13 @@ std::vector<GestureResult> HandPostureClassifier::classify(const cv::Mat& gray, 
           r.best_label = labels_[k];
         }
       }
+      // Weights that load (finite) may still overflow a score (a crafted file of 1e38s): no gesture then.
+      if (!std::isfinite(best))
+      {
+        r.best_label.clear();
+        results.push_back(r);
+        continue;
+      }
       r.score = best;
       if (r.best_label != parameters_.rejection_label && best >= parameters_.min_score)
         r.label = r.best_label;

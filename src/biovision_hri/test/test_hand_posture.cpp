@@ -231,6 +231,33 @@ TEST(HandPostureClassifier, RefusesWhatWouldSpoilTheModelOrNotLoadAgain)
   EXPECT_THROW(c.setParameters(p), std::invalid_argument);
 }
 
+TEST(HandPostureClassifier, AModelWhoseScoresOverflowGivesNoGesture)
+{
+  // Finite weights load, but 1e38 in every one makes each score infinite: no gesture, no infinite score.
+  biovision_common::PayloadWriter w;
+  FeatureLayout().write(w);
+  w.putString("none");
+  w.put<uint64_t>(2);
+  const std::vector<float> huge(FeatureLayout().featureCount(), 1e38f);
+  for (const char* label : {"palm", "none"})
+  {
+    w.putString(label);
+    w.putArray(huge.data(), huge.size());
+    w.put<float>(0.0f);
+  }
+  w.putString("crafted");
+  const std::string path = ::testing::TempDir() + "/overflowing_posture.bin";
+  biovision_common::StoredFile::write(path, "BVHRIPOS", 1, w.bytes());
+  HandPostureClassifier c{FeatureLayout(), HandPostureClassifier::Parameters()};
+  ASSERT_NO_THROW(c.load(path));
+  cv::Rect box;
+  const cv::Mat s = scene(posture(90, 2), 0.0, 1.0, {150, 60}, &box);
+  const GestureResult r = c.classify(s, {box}).front();
+  EXPECT_EQ(r.label, "");
+  EXPECT_EQ(r.best_label, "");
+  EXPECT_TRUE(std::isfinite(r.score));
+}
+
 TEST(HandPostureClassifier, AFlatOrHugeOrNonFiniteRegionIsNoGesture)
 {
   HandPostureClassifier c = trained();

@@ -290,19 +290,33 @@ BioBinMatcher::BioBinMatcher(const BioBinParameters& parameters)
                     parameters.max_iterations)
 {
   parameters_.validate();
+  resetCaches();
+}
+
+void BioBinMatcher::resetCaches()
+{
   biovision_v1::GaborParameters gabor;
   gabor.wavelengths = {parameters_.base_wavelength};
   gabor.orientations = 8;
   biovision_v1::GaborParameters full = gabor;
   full.min_grid_wavelength = 0.0;  // the descriptor compares neighbouring pixels: full resolution
-  for (size_t s = 0; s < parameters_.wavelengths.size(); ++s)
+  const size_t levels = parameters_.wavelengths.size();
+  odd_banks_.clear();
+  barrier_banks_.clear();
+  for (size_t s = 0; s < levels; ++s)
   {
     odd_banks_.push_back(std::make_unique<biovision_v1::SimpleCellBank>(full));
-    spare_.emplace_back();
-    codes_.emplace_back();
-    downsampling_.emplace_back();
     barrier_banks_.push_back(std::make_unique<biovision_v1::SimpleCellBank>(gabor));
   }
+  spare_.assign(levels, CostVolume());
+  codes_.assign(levels, {});
+  downsampling_.clear();
+  downsampling_.resize(levels);
+  std::vector<std::uint16_t>().swap(sgm_costs_);
+  std::vector<std::uint16_t>().swap(sgm_forward_);
+  std::vector<std::uint16_t>().swap(sgm_backward_);
+  spatial_filter_ = IterativeSpatialFilter(parameters_.relaxation, parameters_.stable_cost,
+                                           parameters_.changing_fraction, parameters_.max_iterations);
 }
 
 BioBinMatcher::~BioBinMatcher() = default;
@@ -578,6 +592,9 @@ DisparityMap BioBinMatcher::compute(const cv::Mat& left_in, const cv::Mat& right
     throw std::invalid_argument("BioBin: image " + std::to_string(left.cols) + "x" + std::to_string(left.rows) +
                                 " is smaller than the descriptor window at the coarsest level");
 
+  if (left.size().area() < last_input_.area())
+    resetCaches();
+  last_input_ = left.size();
   times_ = StageTimes();
   const auto start = Clock::now();
   CostVolume previous;

@@ -98,8 +98,13 @@ private:
                                        double sf);
   /// Left disparities [level px, kInvalid] and the left-right check -> the map at input resolution.
   DisparityMap toInputResolution(cv::Mat& left_d, const cv::Mat& right_k, cv::Size input, double sf) const;
+  /// (Re)creates the per-size caches below empty: at construction, and when a frame is smaller than the
+  /// last one, so a single large frame's memory is given back (one 1920x1080 pair kept 1.3 GB of a node's
+  /// resident memory while it went on matching 320x240 pairs).
+  void resetCaches();
 
   BioBinParameters parameters_;
+  cv::Size last_input_;  ///< the size of the last frame matched
   StageTimes times_;
   CostSimd cost_simd_ = bestCostSimd();
   // Per level (each caches its DFT plans for the level size): odd cells at full resolution for the

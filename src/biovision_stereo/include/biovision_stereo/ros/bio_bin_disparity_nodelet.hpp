@@ -77,6 +77,7 @@ private:
 
   biovision_ros_common::NodeletDiagnostics diagnostics_;
   double last_ms_ = 0.0, last_valid_fraction_ = 0.0;
+  int last_area_ = 0;  ///< [px] of the last pair matched
   // Watchdog for pairs the synchroniser never matches (e.g. different stamps with exact sync).
   std::atomic<unsigned> left_images_{0}, pairs_{0};
   unsigned watched_left_ = 0, watched_pairs_ = 0;

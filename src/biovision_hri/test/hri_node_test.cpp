@@ -214,6 +214,28 @@ TEST_F(HriNode, AGreetingSubscribesTheImageThoughNobodyListensAndLetsItGoWhenSto
   ASSERT_TRUE(ros::service::call("hri/stop_greet", trigger));
   EXPECT_TRUE(waitFor([&] { return image_pub_.getNumSubscribers() == 0; }, 5.0)) << "the images are let go";
 }
+
+TEST_F(HriNode, AGreetingOnImagesWhoseStampsStandStillIsGivenUp)
+{
+  // Stamps that never advance (0 from some drivers): the behaviour runs on image time, so it would hold
+  // the head and keep the lazy node's images for good; it gives up after search_timeout (8 s) of wall time.
+  ASSERT_TRUE(waitFor([&] { return image_pub_.getNumSubscribers() == 0; }, 5.0));
+  std_srvs::Trigger trigger;
+  ASSERT_TRUE(ros::service::call("hri/greet", trigger));
+  ASSERT_TRUE(waitFor([&] { return image_pub_.getNumSubscribers() > 0; }, 5.0));
+  const auto image = message(faceScene(cv::Rect(120, 80, 84, 84)));
+  image->header.stamp = ros::Time(0);
+  const ros::WallTime start = ros::WallTime::now();
+  const bool let_go = waitFor(
+      [&] {
+        image_pub_.publish(image);
+        ros::WallDuration(0.2).sleep();
+        return image_pub_.getNumSubscribers() == 0;
+      },
+      15.0);
+  EXPECT_TRUE(let_go) << "the greeting never ended";
+  EXPECT_GT((ros::WallTime::now() - start).toSec(), 6.0) << "not before search_timeout";
+}
 }  // namespace
 
 int main(int argc, char** argv)

@@ -133,6 +133,7 @@ void HriNodelet::onInitNodelet()
       last_reason_ = "time jumped back";
     behaviour_->stop();
     regions_.reset();
+    last_image_t_ = -HUGE_VAL;
   });
 
   input_topic_ = nh.resolveName("image");
@@ -226,6 +227,7 @@ bool HriNodelet::greet(std_srvs::Trigger::Request&, std_srvs::Trigger::Response&
   {
     std::lock_guard<std::mutex> lock(mutex_);
     start_requested_ = true;
+    image_time_moved_ = ros::WallTime::now();
   }
   setBusy(true);  // the greeting needs the images though nobody may listen to hri/* (mutex_ released first)
   res.success = true;
@@ -235,10 +237,29 @@ bool HriNodelet::greet(std_srvs::Trigger::Request&, std_srvs::Trigger::Response&
 
 void HriNodelet::updateBusy()
 {
-  bool greeting;
+  bool greeting, given_up = false;
+  double timeout;
   {
     std::lock_guard<std::mutex> lock(mutex_);
+    timeout = parameters_.greet.search_timeout;
     greeting = start_requested_ || behaviour_->state() != GreetBehaviour::State::Idle;
+    // The behaviour runs on image time: with no images, or stamps that do not advance (0 from some
+    // drivers), it would hold the head and the images for good. Give up after search_timeout of wall time
+    // without image time moving, as the behaviour gives up without a face.
+    const double still = (ros::WallTime::now() - image_time_moved_).toSec();
+    if (greeting && still > timeout)
+    {
+      given_up = behaviour_->state() != GreetBehaviour::State::Idle;
+      behaviour_->stop();
+      start_requested_ = false;
+      last_reason_ = "image time stood still for " + std::to_string(static_cast<int>(still)) + " s";
+      greeting = false;
+    }
+  }
+  if (given_up)
+  {
+    NODELET_WARN("hri: greeting given up: no image with a newer stamp for %.0f s", timeout);
+    setHeadMode("explore");
   }
   setBusy(greeting);
 }
@@ -406,6 +427,11 @@ void HriNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg)
         }
 
       const double t = msg->header.stamp.toSec();
+      if (t > last_image_t_)
+      {
+        last_image_t_ = t;
+        image_time_moved_ = ros::WallTime::now();
+      }
       if (start_requested_)
       {
         start_requested_ = false;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -89,6 +90,8 @@ private:
   bool have_joints_ = false;
   bool start_requested_ = false;
   std::string last_action_, last_reason_;
+  double last_image_t_ = -HUGE_VAL;  ///< [s] the newest image stamp seen
+  ros::WallTime image_time_moved_;   ///< when an image with a newer stamp (or hri/greet) last came
   double last_ms_ = 0.0;
   size_t last_faces_ = 0, last_hands_ = 0, last_gestures_ = 0;
   biovision_ros_common::ClockJumpGuard image_clock_{0.0};

@@ -8,6 +8,29 @@
 
 namespace biovision_tasks
 {
+namespace
+{
+/// The map around the stretch a-b: its bounding box and `reach` [m] on every side (empty when that leaves
+/// the map). A detour's A* searches this window, not the whole map: a helper's 2000 x 2000-cell map with
+/// ring-shaped obstacles on the trail took 3.6 s for the 16 (failing) plans, inside one task cycle.
+OccupancyMap around(const OccupancyMap& map, const cv::Point2d& a, const cv::Point2d& b, double reach)
+{
+  const double cell = map.cellSize();
+  const auto index = [cell](double v, double origin, int size) {
+    return static_cast<int>(std::clamp(std::floor((v - origin) / cell), 0.0, static_cast<double>(size)));
+  };
+  const int cols = map.cells().cols, rows = map.cells().rows;
+  const int c0 = index(std::min(a.x, b.x) - reach, map.originX(), cols);
+  const int c1 = index(std::max(a.x, b.x) + reach, map.originX(), cols - 1) + 1;
+  const int r0 = index(std::min(a.y, b.y) - reach, map.originY(), rows);
+  const int r1 = index(std::max(a.y, b.y) + reach, map.originY(), rows - 1) + 1;
+  if (c1 <= c0 || r1 <= r0)
+    return OccupancyMap();
+  return OccupancyMap(map.cells()(cv::Range(r0, r1), cv::Range(c0, c1)).clone(), map.originX() + c0 * cell,
+                      map.originY() + r0 * cell, cell);
+}
+}  // namespace
+
 GoToTask::GoToTask(std::string name, Goal goal, std::shared_ptr<MissionRecord> record, TaskParameters parameters,
                    double timeout)
   : Task(std::move(name), timeout),
@@ -155,13 +178,14 @@ std::vector<cv::Point2d> GoToTask::trailBack(const Percept& percept) const
   const GridPlanner::Options options = GridPlanner::optionsFor(parameters_);
   std::vector<cv::Point2d> route;
   cv::Point2d from = here;
-  int plans = 0;  // each is an A* over the whole map, inside one task cycle: bounded
+  int plans = 0;  // inside one task cycle: bounded in number and in area (around)
   for (const cv::Point2d& to : trail)
   {
     if (plans < kMaxTrailDetours && !GridPlanner::lineOfSight(percept.map, near, from, to))
     {
       ++plans;
-      const auto detour = GridPlanner::plan(percept.map, from, to, options);
+      const OccupancyMap window = around(percept.map, from, to, kTrailDetourReach);
+      const auto detour = window.empty() ? std::vector<cv::Point2d>() : GridPlanner::plan(window, from, to, options);
       if (!detour.empty())
         route.insert(route.end(), detour.begin(), detour.end() - 1);  // `to` follows
     }

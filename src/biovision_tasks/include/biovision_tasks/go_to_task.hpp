@@ -64,9 +64,12 @@ private:
   /// The trail driven, back from the base to home (MissionRecord::wayBack) and round what the map now
   /// holds on it: its points within robot_radius + squeeze_margin of an obstacle dropped, and a stretch
   /// whose straight line comes that near one (from the base to the first point too) replaced by a
-  /// GridPlanner plan (kept straight when there is none, or after kMaxTrailDetours plans). [m, map]
+  /// GridPlanner plan within kTrailDetourReach of it (kept straight when there is none, or after
+  /// kMaxTrailDetours plans). [m, map]
   std::vector<cv::Point2d> trailBack(const Percept& percept) const;
   static constexpr int kMaxTrailDetours = 16;  ///< plans per trail back (the first stretches matter most)
+  /// [m] a detour is planned within the stretch's bounding box grown by this (a crate's detour needs ~1 m)
+  static constexpr double kTrailDetourReach = 3.0;
 
   Goal goal_;
   std::shared_ptr<MissionRecord> record_;

@@ -25,7 +25,8 @@ std::vector<int> TimeSeriesPlot::labelRows(const std::vector<cv::Range>& spans, 
   std::vector<int> ends(std::max(rows, 0), std::numeric_limits<int>::min() / 2), out;
   for (const cv::Range& s : spans)
   {
-    const auto free = std::find_if(ends.begin(), ends.end(), [&](int end) { return end + gap <= s.start; });
+    const auto free = std::find_if(ends.begin(), ends.end(),
+                                   [&](int end) { return static_cast<long long>(end) + gap <= s.start; });
     if (free == ends.end())
     {
       out.push_back(-1);

@@ -29,7 +29,7 @@ public:
 
   /// A CV_8UC3 image of `size` on white: the grid (when not empty; cell (0, 0)'s corner at `origin` [m],
   /// the shades of GridView::toImage) and the path (polyline 2 px, start and end as 5 px discs) and marks
-  /// (6 px discs or rings, labelled), fitted together with a 0.5 m margin below a 24 px title strip. An
+  /// (6 px discs or rings, the first 500 labelled), fitted together with a 0.5 m margin below a 24 px title strip. An
   /// empty grid and path give the marks alone (or a blank titled tile). Throws std::invalid_argument for a
   /// grid whose data does not match its size, a non-positive resolution of a non-empty grid, or a size
   /// smaller than 64 x 64 px.

@@ -113,9 +113,13 @@ cv::Mat PathPlot::render(const GridView& grid, cv::Point2d origin, const std::ve
       disc(p, 6);
       shown.emplace_back(p, &m);
     }
+  // Each label is placed against every one before it: the first kMaxLabels only (a helper's 10,000 labelled
+  // marks took 5 s; a mission report has tens).
+  constexpr size_t kMaxLabels = 500;
+  size_t labelled = 0;
   for (const auto& [p, m] : shown)
   {
-    if (m->label.empty())
+    if (m->label.empty() || ++labelled > kMaxLabels)
       continue;
     int baseline = 0;
     const cv::Size text = cv::getTextSize(m->label, cv::FONT_HERSHEY_SIMPLEX, 0.4, 1, &baseline);
@@ -155,7 +159,7 @@ cv::Point PathPlot::labelOrigin(cv::Point mark, cv::Size text, cv::Size image, i
     double cost = (box & inside) == box ? 0.0 : 1e9;  // a place leaving the image only when all do
     for (const cv::Rect& t : taken)
       cost += 100.0 * (box & t).area();
-    if (!avoid.empty() && avoid.size() == image)
+    if (!avoid.empty() && avoid.size() == image && avoid.type() == CV_8UC1)
     {
       const cv::Rect in = box & cv::Rect(0, 0, image.width, image.height);
       if (in.area() > 0)

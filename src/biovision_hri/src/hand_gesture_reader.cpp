@@ -10,6 +10,9 @@ std::vector<GestureReading> HandGestureReader::read(const cv::Mat& gray, const s
   if (keypoint_boxes.size() != posture_boxes.size())
     throw std::invalid_argument("HandGestureReader::read: " + std::to_string(keypoint_boxes.size()) +
                                 " keypoint boxes but " + std::to_string(posture_boxes.size()) + " posture boxes");
+  // Checked here too: with only the keypoint templates on, an empty image would read as "no gesture".
+  if (gray.empty() || gray.type() != CV_32FC1)
+    throw std::invalid_argument("HandGestureReader::read: expected a non-empty CV_32FC1 image");
   std::vector<GestureReading> readings(keypoint_boxes.size());
   if (readings.empty())
     return readings;

@@ -24,11 +24,15 @@ constexpr size_t kMaxProvenance = 1u << 16;
 // A region whose square is this many times the image's larger side is no hand region (its patch would
 // hold the whole image in less than a pixel).
 constexpr double kMaxRegionToImage = 8.0;
+// A region whose larger side is below this [px] holds no posture: blown up to the 42 px window it is
+// interpolation alone (a helper's 1x1 box on noise read as a gesture). The node's hands are >= 42 px.
+constexpr int kMinRegionSide = 8;
 
 bool usableRegion(const cv::Mat& gray, const cv::Rect& box)
 {
   const double side = std::max(double(box.width), double(box.height));
-  return box.width > 0 && box.height > 0 && (box & cv::Rect(0, 0, gray.cols, gray.rows)).area() > 0 &&
+  return box.width > 0 && box.height > 0 && side >= kMinRegionSide &&
+         (box & cv::Rect(0, 0, gray.cols, gray.rows)).area() > 0 &&
          side <= kMaxRegionToImage * std::max(gray.cols, gray.rows);
 }
 

@@ -221,6 +221,9 @@ TEST(HandPostureClassifier, RefusesWhatWouldSpoilTheModelOrNotLoadAgain)
   EXPECT_EQ(c.exampleCount(), before) << "a refused example adds none of its copies";
   EXPECT_THROW(c.addExample(texture(90, 90, 3), cv::Rect(0, 0, 90, 90), std::string(257, 'x')), std::invalid_argument);
   EXPECT_THROW(c.addExample(texture(90, 90, 3), cv::Rect(0, 0, 1000000, 1000000), "f1"), std::invalid_argument);
+  EXPECT_THROW(c.addExample(texture(90, 90, 3), cv::Rect(10, 10, 7, 7), "f1"), std::invalid_argument);
+  // A box under 8 px holds no posture (blown up to the window it is interpolation alone).
+  EXPECT_EQ(c.classify(texture(90, 90, 3), {cv::Rect(10, 10, 1, 1)}).front().best_label, "");
   EXPECT_THROW(c.save(::testing::TempDir() + "/long_provenance.bin", std::string((1u << 16) + 1, 'p')),
                std::invalid_argument);
   HandPostureClassifier::Parameters p;
@@ -324,4 +327,12 @@ TEST(HandGestureReader, KeypointsFirstThenPostureSvmsEachOnItsOwnBox)
 
   EXPECT_TRUE(both.read(posture_scene, {}, {}).empty());
   EXPECT_THROW(both.read(posture_scene, {posture_box}, {}), std::invalid_argument);
+  // A bad image is refused whichever methods are on (the templates alone had read it as no gesture).
+  for (const HandGestureReader& reader :
+       {both, HandGestureReader(&keypoints, nullptr), HandGestureReader(nullptr, nullptr)})
+  {
+    EXPECT_THROW(reader.read(cv::Mat(), {posture_box}, {posture_box}), std::invalid_argument);
+    EXPECT_THROW(reader.read(cv::Mat(240, 320, CV_8UC1, cv::Scalar(0)), {posture_box}, {posture_box}),
+                 std::invalid_argument);
+  }
 }

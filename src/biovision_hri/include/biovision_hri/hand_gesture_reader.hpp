@@ -39,8 +39,8 @@ public:
   /// One reading per hand, in order. `keypoint_boxes[i]` and `posture_boxes[i]` are hand i's region for
   /// each method (the node enlarges the detected box for the keypoints, whose templates were cut with
   /// context; the SVMs were trained on boxes as annotated). `gray`: CV_32FC1 in [0, 1]. Throws
-  /// std::invalid_argument when the two lists differ in length, and what the methods throw (an empty or
-  /// non-float image; std::logic_error for untrained SVMs).
+  /// std::invalid_argument when the two lists differ in length or the image is empty or not CV_32FC1
+  /// (whichever methods are on), and what the methods throw (std::logic_error for untrained SVMs).
   std::vector<GestureReading> read(const cv::Mat& gray, const std::vector<cv::Rect>& keypoint_boxes,
                                    const std::vector<cv::Rect>& posture_boxes) const;
 

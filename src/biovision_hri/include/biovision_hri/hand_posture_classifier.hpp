@@ -56,8 +56,8 @@ public:
   /// Adds the region `box` of a gray image (CV_32FC1 in [0, 1]) as a training example of `label`, with its
   /// augmented copies (3 rotations x 2 mirrors by default). The region is cut as a square around the box's
   /// centre (image border replicated). Throws std::invalid_argument for a label of 0 or > 256 characters,
-  /// an empty or non-float image, non-finite pixels in the region, or a box that is empty, does not
-  /// overlap the image or is more than 8 times its larger side (nothing is added then).
+  /// an empty or non-float image, non-finite pixels in the region, or a box that is empty, under 8 px,
+  /// does not overlap the image or is more than 8 times its larger side (nothing is added then).
   void addExample(const cv::Mat& gray, const cv::Rect& box, const std::string& label);
   /// Trains one SVM per label on the examples (LIBLINEAR; needs 2-256 labels, at least one of them not the
   /// rejection label). Throws std::logic_error otherwise. The examples are kept (a later call retrains).

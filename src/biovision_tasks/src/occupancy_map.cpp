@@ -1,5 +1,6 @@
 #include "biovision_tasks/occupancy_map.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -21,6 +22,22 @@ bool OccupancyMap::cellOf(double x, double y, int& row, int& col) const
   col = static_cast<int>(std::floor((x - origin_x_) / cell_));
   row = static_cast<int>(std::floor((y - origin_y_) / cell_));
   return row >= 0 && col >= 0 && row < cells_.rows && col < cells_.cols;
+}
+
+cv::Rect OccupancyMap::cellsWithin(double x0, double y0, double x1, double y1) const
+{
+  if (cells_.empty() || !std::isfinite(x0) || !std::isfinite(y0) || !std::isfinite(x1) || !std::isfinite(y1))
+    return {};
+  const auto index = [this](double v, double origin, int size) {
+    return static_cast<int>(std::clamp(std::floor((v - origin) / cell_), -1.0, static_cast<double>(size)));
+  };
+  const int c0 = std::max(0, index(std::min(x0, x1), origin_x_, cells_.cols));
+  const int c1 = std::min(cells_.cols - 1, index(std::max(x0, x1), origin_x_, cells_.cols));
+  const int r0 = std::max(0, index(std::min(y0, y1), origin_y_, cells_.rows));
+  const int r1 = std::min(cells_.rows - 1, index(std::max(y0, y1), origin_y_, cells_.rows));
+  if (c1 < c0 || r1 < r0)
+    return {};
+  return cv::Rect(c0, r0, c1 - c0 + 1, r1 - r0 + 1);
 }
 
 cv::Point2d OccupancyMap::centreOf(int row, int col) const

@@ -161,19 +161,12 @@ void TaskManager::runGestureAction(const std::string& action, int priority, doub
 bool TaskManager::obstacleInFront(const Percept& p) const
 {
   const OccupancyMap& m = p.map;
-  const double r = parameters_.greet_distance, cell = m.cellSize();
+  const double r = parameters_.greet_distance;
   if (m.empty() || r <= 0)
     return false;
-  // Clamped as doubles first: a pose far outside the map must not overflow the int conversion.
-  const auto index = [cell](double v, double origin, int size) {
-    return int(std::clamp(std::floor((v - origin) / cell), -1.0, double(size)));
-  };
-  const int c0 = std::max(0, index(p.pose.x - r, m.originX(), m.cells().cols));
-  const int c1 = std::min(m.cells().cols - 1, index(p.pose.x + r, m.originX(), m.cells().cols));
-  const int r0 = std::max(0, index(p.pose.y - r, m.originY(), m.cells().rows));
-  const int r1 = std::min(m.cells().rows - 1, index(p.pose.y + r, m.originY(), m.cells().rows));
-  for (int row = r0; row <= r1; ++row)
-    for (int col = c0; col <= c1; ++col)
+  const cv::Rect box = m.cellsWithin(p.pose.x - r, p.pose.y - r, p.pose.x + r, p.pose.y + r);
+  for (int row = box.y; row < box.br().y; ++row)
+    for (int col = box.x; col < box.br().x; ++col)
     {
       const unsigned char v = m.cells()(row, col);
       if (v == OccupancyMap::kUnknown || v < parameters_.occupied_threshold)

@@ -305,6 +305,19 @@ OccupancyMap wallWithGaps(const std::vector<std::pair<int, int>>& gaps)
 }
 }  // namespace
 
+TEST(OccupancyMap, CellsWithinABoxAreClippedToTheMap)
+{
+  const OccupancyMap m(cv::Mat1b(20, 30, uchar(0)), -1.0, -2.0, 0.1);  // x in [-1, 2), y in [-2, 0)
+  EXPECT_EQ(m.cellsWithin(0.0, -1.0, 0.25, -0.75), cv::Rect(10, 10, 3, 3));
+  EXPECT_EQ(m.cellsWithin(0.25, -0.75, 0.0, -1.0), cv::Rect(10, 10, 3, 3)) << "corners in any order";
+  EXPECT_EQ(m.cellsWithin(-5.0, -5.0, 5.0, 5.0), cv::Rect(0, 0, 30, 20)) << "clipped";
+  EXPECT_TRUE(m.cellsWithin(3.0, -1.0, 4.0, -0.5).empty()) << "right of the map";
+  EXPECT_TRUE(m.cellsWithin(-3.0, -1.0, -2.0, -0.5).empty()) << "left of the map";
+  EXPECT_EQ(m.cellsWithin(-1e300, -1e300, 1e300, 1e300), cv::Rect(0, 0, 30, 20)) << "no int overflow";
+  EXPECT_TRUE(m.cellsWithin(NAN, -1.0, 0.0, 0.0).empty());
+  EXPECT_TRUE(OccupancyMap().cellsWithin(0, 0, 1, 1).empty());
+}
+
 TEST(OccupancyMap, ObstacleDistanceIsExactToTheNearestObstacleCentre)
 {
   const OccupancyMap map = wallWithGaps({{27, 33}});

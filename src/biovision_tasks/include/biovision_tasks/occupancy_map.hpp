@@ -24,6 +24,10 @@ public:
 
   /// The cell containing (x, y) [m]; false when outside the map.
   bool cellOf(double x, double y, int& row, int& col) const;
+  /// The cells overlapping the box [x0, x1] x [y0, y1] [m] (corners in any order), clipped to the map: x
+  /// along columns, y along rows; empty when the box misses the map or a bound is not finite (clamped
+  /// before the int conversion, so a pose far outside cannot overflow it).
+  cv::Rect cellsWithin(double x0, double y0, double x1, double y1) const;
   /// Centre of a cell [m].
   cv::Point2d centreOf(int row, int col) const;
   /// Obstacles at strength >= threshold [0..100] grown by `radius` [m] (the robot's radius plus a

@@ -82,6 +82,9 @@ void GestureRecognizer::loadTemplates(const std::string& path)
 
 std::vector<GestureResult> GestureRecognizer::recognize(const cv::Mat& gray, const std::vector<cv::Rect>& hand_boxes)
 {
+  // As HandPostureClassifier::classify: an empty image had read as "no gesture", an 8-bit one threw deep inside.
+  if (gray.empty() || gray.type() != CV_32FC1)
+    throw std::invalid_argument("GestureRecognizer::recognize: expected a non-empty CV_32FC1 image");
   std::vector<GestureResult> results;
   results.reserve(hand_boxes.size());
   for (const cv::Rect& box : hand_boxes)

@@ -73,6 +73,9 @@ TEST(GestureRecognizer, TheRejectionClassSuppressesAGesture)
   // An empty or outside box gives no gesture, not an error.
   EXPECT_EQ(recognizer.recognize(palm_query, {cv::Rect(400, 400, 10, 10)}).front().label, "");
   EXPECT_EQ(recognizer.recognize(palm_query, {cv::Rect()}).front().label, "");
+  // An empty or 8-bit image is refused, not read as "no gesture".
+  EXPECT_THROW(recognizer.recognize(cv::Mat(), {box}), std::invalid_argument);
+  EXPECT_THROW(recognizer.recognize(cv::Mat(240, 320, CV_8UC1, cv::Scalar(0)), {box}), std::invalid_argument);
 }
 
 TEST(GestureRecognizer, TemplatesRoundTripAndForeignFilesAreRefused)

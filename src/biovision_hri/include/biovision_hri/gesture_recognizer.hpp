@@ -60,7 +60,8 @@ public:
   /// when the box does not overlap the image or the label is empty.
   size_t addTemplate(const cv::Mat& gray, const cv::Rect& box, const std::string& label);
 
-  /// One result per hand box, in order (label "" when no gesture).
+  /// One result per hand box, in order (label "" when no gesture). Throws std::invalid_argument for an
+  /// empty image or one that is not CV_32FC1.
   std::vector<GestureResult> recognize(const cv::Mat& gray, const std::vector<cv::Rect>& hand_boxes);
 
   /// Templates are stored as a biovision_recognition ObjectMemory (StoredFile "BVOBJMEM", checksummed,

@@ -86,6 +86,27 @@ int main(int argc, char** argv)
   return RUN_ALL_TESTS();
 }
 
+TEST(PathPlot, ALegendNamesThePathAndItsDiscsAtTheBottomRight)
+{
+  const std::vector<cv::Point2d> path = {{0.5, 2.0}, {1.0, 2.0}};  // away from the legend's corner
+  const cv::Mat image = PathPlot().render(GridView(), {}, path, {}, "path", cv::Size(520, 324));
+  auto count = [&](const cv::Scalar& colour) {
+    int n = 0;
+    for (int y = image.rows - 20; y < image.rows; ++y)
+      for (int x = image.cols / 2; x < image.cols; ++x)
+        n += asScalar(image.at<cv::Vec3b>(y, x)) == colour;
+    return n;
+  };
+  EXPECT_GT(count(PathPlot::kPathColour), 20) << "the path's stroke";
+  EXPECT_GT(count(PathPlot::kStartColour), 20) << "the start's disc";
+  EXPECT_GT(count(PathPlot::kEndColour), 20) << "the end's disc";
+  // A labelled mark in that corner puts its label elsewhere than over the legend.
+  const cv::Size text(40, 10);
+  const cv::Rect legend(cv::Point(300, 324 - 20), cv::Point(520, 324));
+  const cv::Point o = PathPlot::labelOrigin({500, 300}, text, image.size(), 24, {legend});
+  EXPECT_EQ((cv::Rect(o.x, o.y - text.height, text.width, text.height + 3) & legend).area(), 0);
+}
+
 TEST(PathPlot, LabelsStayInsideTheImageAndOffTheTitle)
 {
   const cv::Size image(720, 560), text(60, 10);

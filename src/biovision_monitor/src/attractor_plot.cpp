@@ -117,7 +117,23 @@ cv::Mat AttractorPlot::render(const AttractorView& s, cv::Size size, Axes* axes_
       peak = std::max({peak, std::abs(att[i][c]), std::abs(rep[i][c])});
     }
   }
+  // The title's lines sit inside the plot area's top (a panel's tile title covers the image's top rows), on
+  // two lines where one would run out of the plot (a panel tile's plot cut "rad/s" off). The rate axis
+  // leaves them a band of their own: curves drawn through them made both unreadable.
+  const std::string name = (s.controller.empty() ? std::string("attractor") : s.controller) +
+                           (s.behaviour.empty() ? "" : " (" + s.behaviour + ")"),
+                    state = "phi " + formatNumber(s.angle / kDeg, 0) + " deg, dphi/dt " + formatNumber(s.rate, 2) +
+                            " rad/s";
+  constexpr double kFont = 0.33;
+  constexpr int kLineStep = 11;
+  int baseline = 0;
+  const std::string line = name + "  " + state;
+  const bool fits = cv::getTextSize(line, cv::FONT_HERSHEY_SIMPLEX, kFont, 1, &baseline).width <= axes.area.width - 6;
+  const std::vector<std::string> lines = fits ? std::vector<std::string>{line} : std::vector<std::string>{name, state};
+  const double half = (axes.area.height - 1) / 2.0, band = kLineStep * double(lines.size()) + 3;
   axes.rate_max = peak > 1e-9 ? 1.1 * peak : 1.0;
+  if (peak > 1e-9 && half > 2 * band)  // a tiny plot keeps its whole height for the curves
+    axes.rate_max = std::max(axes.rate_max, peak * half / (half - band));
 
   // Grid: section boundaries, 0 deg, zero line.
   const size_t sections = s.section_angles.size();
@@ -187,19 +203,8 @@ cv::Mat AttractorPlot::render(const AttractorView& s, cv::Size size, Axes* axes_
     cv::circle(image, p, 5, colours::kCurrent, cv::FILLED, cv::LINE_AA);
     cv::circle(image, p, 5, colours::kAxis, 1, cv::LINE_AA);
   }
-  const std::string name = (s.controller.empty() ? std::string("attractor") : s.controller) +
-                           (s.behaviour.empty() ? "" : " (" + s.behaviour + ")"),
-                    state = "phi " + formatNumber(s.angle / kDeg, 0) + " deg, dphi/dt " + formatNumber(s.rate, 2) +
-                            " rad/s";
-  // Inside the plot area's top: a panel's tile title covers the image's top rows. On two lines where one
-  // would run out of the plot (a panel tile's plot cut "rad/s" off).
-  constexpr double kFont = 0.33;
-  int baseline = 0;
-  const std::string line = name + "  " + state;
-  const bool fits = cv::getTextSize(line, cv::FONT_HERSHEY_SIMPLEX, kFont, 1, &baseline).width <= axes.area.width - 6;
-  const std::vector<std::string> lines = fits ? std::vector<std::string>{line} : std::vector<std::string>{name, state};
   for (size_t i = 0; i < lines.size(); ++i)
-    cv::putText(image, lines[i], {axes.area.x + 3, axes.area.y + 11 + 11 * static_cast<int>(i)},
+    cv::putText(image, lines[i], {axes.area.x + 3, axes.area.y + kLineStep * (1 + static_cast<int>(i))},
                 cv::FONT_HERSHEY_SIMPLEX, kFont, colours::kAxis, 1, cv::LINE_AA);
   if (axes_out)
     *axes_out = axes;

@@ -54,12 +54,13 @@ cv::Mat noDataTile(const std::string& topic, cv::Size size)
   return tile;
 }
 
-void drawTitle(cv::Mat& image, const std::string& text)
+cv::Point textOriginInside(const cv::Mat& image, const std::string& text, double scale, cv::Point wanted, int top)
 {
-  const int h = std::min(18, image.rows);
-  cv::Mat strip = image(cv::Rect(0, 0, image.cols, h));
-  strip = strip * 0.35;
-  cv::putText(image, text, cv::Point(4, h - 5), cv::FONT_HERSHEY_SIMPLEX, 0.45, colours::kText, 1, cv::LINE_AA);
+  int baseline = 0;
+  const cv::Size size = cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, scale, 1, &baseline);
+  const int x = std::max(0, std::min(wanted.x, image.cols - size.width - 1));
+  const int y = std::max(top + size.height + 1, std::min(wanted.y, image.rows - baseline - 1));
+  return {x, y};
 }
 
 std::string formatNumber(double value, int digits)

@@ -27,8 +27,7 @@ cv::Mat ObjectPlot::render(const cv::Mat& image, const std::vector<ObjectView>& 
       cv::rectangle(tile, box, green, 2, cv::LINE_AA);
       int baseline = 0;
       const cv::Size text = cv::getTextSize(label, cv::FONT_HERSHEY_SIMPLEX, 0.4, 1, &baseline);
-      const cv::Point at(std::clamp(box.x, 0, std::max(0, tile.cols - text.width)),
-                         std::max(box.y - 3, text.height + 2));
+      const cv::Point at = textOriginInside(tile, label, 0.4, {box.x, box.y - 3}, kTitleHeight + 2);
       cv::rectangle(tile, {at.x, at.y - text.height - 2}, {at.x + text.width, at.y + 2}, cv::Scalar(0, 0, 0),
                     cv::FILLED);
       cv::putText(tile, label, at, cv::FONT_HERSHEY_SIMPLEX, 0.4, green, 1, cv::LINE_AA);

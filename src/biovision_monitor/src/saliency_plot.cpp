@@ -63,16 +63,19 @@ cv::Mat SaliencyPlot::renderThresholded(const cv::Mat& map, const std::vector<Re
     const bool attended = r.rank == 0;
     const cv::Scalar colour = attended ? cv::Scalar(0, 0, 255) : cv::Scalar(0, 220, 255);
     cv::rectangle(image, box, colour, attended ? 2 : 1, cv::LINE_AA);
-    cv::putText(image, "#" + std::to_string(r.rank), {box.x + 2, std::max(box.y + 12, 12)}, cv::FONT_HERSHEY_SIMPLEX,
-                0.4, colour, 1, cv::LINE_AA);
+    // Labels inside the image and below a panel's tile title, wherever the box reaches.
+    const std::string rank = "#" + std::to_string(r.rank);
+    cv::putText(image, rank, textOriginInside(image, rank, 0.4, {box.x + 2, box.y + 12}, kTitleHeight),
+                cv::FONT_HERSHEY_SIMPLEX, 0.4, colour, 1, cv::LINE_AA);
     if (r.inhibition > 0.01 && std::isfinite(r.inhibition))
     {
       const cv::Scalar magenta(255, 0, 255);
       const int thickness = 1 + int(std::lround(2 * std::min(1.0, r.inhibition)));
       cv::line(image, box.tl(), box.br(), magenta, thickness, cv::LINE_AA);
       cv::line(image, {box.x, box.br().y}, {box.br().x, box.y}, magenta, thickness, cv::LINE_AA);
-      cv::putText(image, "IoR " + formatNumber(r.inhibition, 1), {box.x + 2, box.br().y - 3}, cv::FONT_HERSHEY_SIMPLEX,
-                  0.35, magenta, 1, cv::LINE_AA);
+      const std::string ior = "IoR " + formatNumber(r.inhibition, 1);
+      cv::putText(image, ior, textOriginInside(image, ior, 0.35, {box.x + 2, box.br().y - 3}, kTitleHeight),
+                  cv::FONT_HERSHEY_SIMPLEX, 0.35, magenta, 1, cv::LINE_AA);
     }
   }
   return image;

@@ -97,8 +97,13 @@ cv::Mat TimeSeriesPlot::render(const std::vector<Series>& series, const std::vec
   const std::vector<int> rows = labelRows(spans, kLabelRows);
   for (size_t i = 0; i < shown.size(); ++i)
     if (rows[i] >= 0)
-      cv::putText(image, shown[i]->label, {spans[i].start, axes.area.y + 10 + 10 * rows[i]}, cv::FONT_HERSHEY_SIMPLEX,
-                  kLabelFont, colours::kAttraction, 1, cv::LINE_AA);
+    {
+      // On the background's colour: a neighbouring mark's dashed line would otherwise run through the letters.
+      const cv::Point at(spans[i].start, axes.area.y + 10 + 10 * rows[i]);
+      cv::rectangle(image, {at.x - 1, at.y - 8}, {spans[i].end, at.y + 1}, colours::kBackground, cv::FILLED);
+      cv::putText(image, shown[i]->label, at, cv::FONT_HERSHEY_SIMPLEX, kLabelFont, colours::kAttraction, 1,
+                  cv::LINE_AA);
+    }
   int legend_right = size.width - 10;  // the legend fills the title's row from the right, clear of the marks' labels
   for (const Series& s : series)
   {

@@ -147,6 +147,30 @@ TEST(AttractorPlot, ATitleTooLongForThePlotGoesOnTwoLines)
   EXPECT_EQ(dark(one, cv::Rect(axes.area.x + 3, axes.area.y + 14, 60, 9)), 0) << "one line where it fits";
 }
 
+TEST(AttractorPlot, CurvesLeaveTheTitlesLinesABandOfTheirOwn)
+{
+  AttractorView s = nineSections();
+  s.attraction[4] = 1.0;  // the sum's peak, where the axis would put it at 1/1.1 of the area's half height
+  s.angle = 0.0;
+  for (const cv::Size size : {kSize, cv::Size(640, 240)})  // two lines of title, then one
+  {
+    s.behaviour = size == kSize ? "look_ahead" : "";  // too long for 320 px on one line (as above)
+    AttractorPlot::Axes axes;
+    const cv::Mat image = AttractorPlot(defaults.model("head_pan")).render(s, size, &axes);
+    const int lines = size.width == kSize.width ? 2 : 1;
+    int crossing = 0;
+    for (int y = axes.area.y + 1; y < axes.area.y + 11 * lines; ++y)  // the text's rows (the band: 3 more)
+      for (int x = axes.area.x + 1; x < axes.area.br().x - 1; ++x)
+        crossing += near(image.at<cv::Vec3b>(y, x), colours::kSum, 60) ||
+                    near(image.at<cv::Vec3b>(y, x), colours::kAttraction, 60);
+    EXPECT_EQ(crossing, 0) << size << ": curves through the title's band";
+    int drawn = 0;
+    for (int y = axes.area.y; y < axes.area.br().y; ++y)
+      drawn += near(image.at<cv::Vec3b>(y, axes.column(-10 * kDeg)), colours::kSum, 60);
+    EXPECT_GT(drawn, 0) << "the sum is still drawn";
+  }
+}
+
 TEST(AttractorPlot, NonFiniteAndMissingValuesDrawNothingWrong)
 {
   AttractorView s = nineSections();
@@ -227,6 +251,48 @@ TEST(SaliencyPlot, ThresholdsAtTheFractionOfTheMaximumAndBoxesTheAttendedRegion)
   EXPECT_TRUE(near(image.at<cv::Vec3b>(100, 220), cv::Scalar(255, 255, 255))) << "salient inside";
   EXPECT_TRUE(near(image.at<cv::Vec3b>(40, 40), cv::Scalar(255, 0, 255))) << "IoR cross through the centre";
   EXPECT_THROW(SaliencyPlot(1.5), std::invalid_argument);
+}
+
+TEST(SaliencyPlot, LabelsOfBoxesAtTheEdgesStayInsideAndBelowTheTileTitle)
+{
+  const cv::Mat map(120, 160, CV_32FC1, cv::Scalar(0.05f));
+  RegionView top;  // at the image's top edge: "#0" under the title strip, not in it
+  top.rank = 0;
+  top.box = cv::Rect(100, 0, 60, 60);
+  RegionView corner;  // cut by the left and bottom edges: its "IoR" label whole inside the image
+  corner.rank = 1;
+  corner.box = cv::Rect(-30, 200, 80, 80);
+  corner.inhibition = 0.8;
+  const cv::Mat image = SaliencyPlot(0.15).renderThresholded(map, {top, corner}, 320, 240, kSize);
+  const cv::Scalar red(0, 0, 255), magenta(255, 0, 255);
+  auto count = [&](const cv::Rect& r, const cv::Scalar& colour) {
+    int n = 0;
+    for (int y = r.y; y < r.br().y; ++y)
+      for (int x = r.x; x < r.br().x; ++x)
+        n += near(image.at<cv::Vec3b>(y, x), colour, 60);
+    return n;
+  };
+  EXPECT_GT(count(cv::Rect(103, kTitleHeight, 20, 12), red), 5) << "the rank below the title";
+  EXPECT_EQ(count(cv::Rect(103, 2, 20, kTitleHeight - 3), red), 0) << "nothing of it under the title";
+  const cv::Point ior = textOriginInside(image, "IoR 0.8", 0.35, {-28, 277}, kTitleHeight);
+  EXPECT_EQ(ior.x, 0);
+  EXPECT_LT(ior.y, 240);
+  // Right of the cross's lines (they leave the image below row 240 there): the label's letters alone.
+  EXPECT_GT(count(cv::Rect(10, ior.y - 8, 30, 9), magenta), 5) << "the label inside the image";
+}
+
+TEST(Drawing, TextOriginInsideKeepsTheWholeTextInTheImageBelowTheTop)
+{
+  const cv::Mat image(100, 200, CV_8UC3);
+  int baseline = 0;
+  const cv::Size text = cv::getTextSize("label", cv::FONT_HERSHEY_SIMPLEX, 0.4, 1, &baseline);
+  EXPECT_EQ(textOriginInside(image, "label", 0.4, {50, 50}, 18), cv::Point(50, 50)) << "room: where wanted";
+  const cv::Point clamped = textOriginInside(image, "label", 0.4, {190, 2}, 18);
+  EXPECT_LE(clamped.x + text.width, 200);
+  EXPECT_GE(clamped.y - text.height, 18);
+  const cv::Point low = textOriginInside(image, "label", 0.4, {-40, 140}, 18);
+  EXPECT_EQ(low.x, 0);
+  EXPECT_LE(low.y + baseline, 100);
 }
 
 TEST(ObjectPlot, BoxesTheObjectWhereItIs)

@@ -1,4 +1,5 @@
 #include "biovision_common/path_plot.hpp"
+#include "biovision_common/plot_title.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,16 +13,7 @@ const cv::Scalar PathPlot::kPathColour(200, 80, 0), PathPlot::kStartColour(0, 15
 
 namespace
 {
-const cv::Scalar kBackground(255, 255, 255), kAxis(0, 0, 0), kTitle(255, 255, 255);
-
-// The title on a dark strip across the top (biovision_monitor's tile titles look the same).
-void drawTitle(cv::Mat& image, const std::string& text)
-{
-  const int h = std::min(18, image.rows);
-  cv::Mat strip = image(cv::Rect(0, 0, image.cols, h));
-  strip = strip * 0.35;
-  cv::putText(image, text, cv::Point(4, h - 5), cv::FONT_HERSHEY_SIMPLEX, 0.45, kTitle, 1, cv::LINE_AA);
-}
+const cv::Scalar kBackground(255, 255, 255), kAxis(0, 0, 0);
 }  // namespace
 
 cv::Mat PathPlot::render(const GridView& grid, cv::Point2d origin, const std::vector<cv::Point2d>& path,
@@ -113,6 +105,29 @@ cv::Mat PathPlot::render(const GridView& grid, cv::Point2d origin, const std::ve
       disc(p, 6);
       shown.emplace_back(p, &m);
     }
+  // 1 m scale bar, bottom left.
+  const cv::Point bar0(10, size.height - 12), bar1(10 + int(std::lround(scale)), size.height - 12);
+  cv::line(image, bar0, bar1, kAxis, 2);
+  cv::putText(image, "1 m", bar1 + cv::Point(6, 4), cv::FONT_HERSHEY_SIMPLEX, 0.4, kAxis, 1, cv::LINE_AA);
+  taken.emplace_back(cv::Point(bar0.x, bar0.y - 10), cv::Point(bar1.x + 36, size.height));
+  {  // Legend, bottom right on the scale bar's row: what the path and its two discs are.
+    int right = size.width - 8;
+    const std::pair<const char*, cv::Scalar> entries[] = {{"end", kEndColour}, {"start", kStartColour}};
+    for (const auto& [name, colour] : entries)
+    {
+      int baseline = 0;
+      const int width = cv::getTextSize(name, cv::FONT_HERSHEY_SIMPLEX, 0.4, 1, &baseline).width;
+      cv::putText(image, name, {right - width, size.height - 8}, cv::FONT_HERSHEY_SIMPLEX, 0.4, kAxis, 1, cv::LINE_AA);
+      cv::circle(image, {right - width - 9, size.height - 12}, 5, colour, cv::FILLED, cv::LINE_8);
+      right -= width + 24;
+    }
+    int baseline = 0;
+    const int width = cv::getTextSize("path", cv::FONT_HERSHEY_SIMPLEX, 0.4, 1, &baseline).width;
+    cv::putText(image, "path", {right - width, size.height - 8}, cv::FONT_HERSHEY_SIMPLEX, 0.4, kAxis, 1, cv::LINE_AA);
+    cv::line(image, {right - width - 22, size.height - 12}, {right - width - 4, size.height - 12}, kPathColour, 2);
+    taken.emplace_back(cv::Point(right - width - 22, size.height - 20),
+                       cv::Point(size.width, size.height));  // no label over them
+  }
   // Each label is placed against every one before it: the first kMaxLabels only (a helper's 10,000 labelled
   // marks took 5 s; a mission report has tens).
   constexpr size_t kMaxLabels = 500;
@@ -127,10 +142,6 @@ cv::Mat PathPlot::render(const GridView& grid, cv::Point2d origin, const std::ve
     cv::putText(image, m->label, o, cv::FONT_HERSHEY_SIMPLEX, 0.4, m->colour, 1, cv::LINE_AA);
     taken.emplace_back(o.x, o.y - text.height, text.width, text.height + baseline);
   }
-  // 1 m scale bar, bottom left.
-  const cv::Point bar0(10, size.height - 12), bar1(10 + int(std::lround(scale)), size.height - 12);
-  cv::line(image, bar0, bar1, kAxis, 2);
-  cv::putText(image, "1 m", bar1 + cv::Point(6, 4), cv::FONT_HERSHEY_SIMPLEX, 0.4, kAxis, 1, cv::LINE_AA);
   drawTitle(image, title);
   return image;
 }

@@ -4,6 +4,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "biovision_common/plot_title.hpp"
+
 /// Drawing helpers shared by the plots and the panel (OpenCV only). Images are CV_8UC3 BGR.
 namespace biovision_monitor
 {
@@ -29,8 +31,13 @@ cv::Mat fitInto(const cv::Mat& image, cv::Size size, double* scale = nullptr, cv
 /// input never arrived.
 cv::Mat noDataTile(const std::string& topic, cv::Size size);
 
-/// Draws `text` with a dark backing strip across the top of `image` (the panel's tile titles).
-void drawTitle(cv::Mat& image, const std::string& text);
+/// The panel's tile titles: the report plots' strip (biovision_common), kTitleHeight px high.
+using biovision_common::drawTitle;
+using biovision_common::kTitleHeight;
+/// The baseline origin nearest `wanted` at which `text` (FONT_HERSHEY_SIMPLEX, `scale`, thickness 1) lies
+/// wholly inside `image` below row `top` (a label of a box cut by the image's edge stays readable); the
+/// left or top edge wins where the text is larger than the room.
+cv::Point textOriginInside(const cv::Mat& image, const std::string& text, double scale, cv::Point wanted, int top = 0);
 
 /// Draws `text` centred horizontally at baseline row `y`, scaled down until it fits the width.
 void putTextCentred(cv::Mat& image, const std::string& text, int y, const cv::Scalar& colour, double scale = 0.5);

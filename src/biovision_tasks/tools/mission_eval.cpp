@@ -89,6 +89,17 @@ int main(int argc, char** argv)
       "or stm.sectors=N "
       "(repeatable), "
       "e.g. home_range_cost=0.3 base.blind_speed=0.05");
+  options.app()
+      .add_option("--world", trial.world_file,
+                  "a simulator world file instead of the generated rooms, e.g. "
+                  "src/biovision_bringup/config/worlds/corridor.yaml (the demo's): the target where its object "
+                  "--world-target stands, the start at the origin facing +x, jittered per seed")
+      ->check(CLI::ExistingFile);
+  options.app().add_option("--world-target", trial.world_target, "the label of --world's target object");
+  options.app()
+      .add_option("--start-jitter", trial.start_jitter,
+                  "[m and rad] with --world: the start's seeded offset across and turn")
+      ->check(CLI::NonNegativeNumber);
   options.app().add_option("--json", json_path, "write the figures here");
   std::string plots_dir;
   options.app().add_option("--plots", plots_dir,
@@ -247,6 +258,14 @@ int main(int argc, char** argv)
   overall["mean_final_home_distance_m"] = home_sum / trials;
   overall["mean_ltm_precision"] = precision_sum / trials;
   document["split"] = split;
+  if (!trial.world_file.empty())  // the notes below describe the generated rooms; this run had one world
+    document["world"] = {{"file", trial.world_file},
+                         {"target", trial.world_target},
+                         {"start_jitter", trial.start_jitter},
+                         {"rule",
+                          "the world's own target object taken out, the trial's target where it stood; the "
+                          "start at the origin facing +x, offset across and turned by a seeded uniform draw "
+                          "within +-start_jitter (m, rad)"}};
   document["seeds"] = std::to_string(first_seed) + "-" + std::to_string(first_seed + trials - 1);
   document["overall"] = overall;
   document["notes"] =

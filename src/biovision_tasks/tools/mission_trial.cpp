@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 
 #include "biovision_attractor/base_attractor.hpp"
 #include "biovision_attractor/head_attractor.hpp"
@@ -92,6 +94,34 @@ OccupancyMap ltmMap(const biovision_memory::LongTermMemory& ltm, const biovision
   return OccupancyMap(m, ox, oy, cell);
 }
 
+// The demo's world as a room: the target object taken out (the trial puts its own there), the start at the
+// origin facing +x, moved across and turned by up to o.start_jitter per seed.
+biovision_sim::RoomWorldGenerator::Room roomFromWorld(unsigned seed, const MissionTrialOptions& o)
+{
+  const biovision_sim::World loaded = biovision_sim::World::load(o.world_file);
+  biovision_sim::RoomWorldGenerator::Room room;
+  room.seed = seed;
+  room.width = 10.0;  // ltmMap's extent: x in [-1, 11], y in [-5, 5]
+  room.depth = 8.0;
+  bool found = false;
+  for (const auto& object : loaded.objects())
+    if (object.label == o.world_target)
+    {
+      room.goal_x = object.position.x();
+      room.goal_y = object.position.y();
+      found = true;
+    }
+    else
+      room.world.addObject(object);  // geometry only: the trial's FloorPlan reads no texture
+  if (!found)
+    throw std::runtime_error("mission_eval: " + o.world_file + " has no object labelled '" + o.world_target + "'");
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> jitter(-o.start_jitter, o.start_jitter);
+  room.start_y = jitter(rng);
+  room.start_yaw = jitter(rng);
+  return room;
+}
+
 // New obstacles on the straight way from `from` to home, each clear of the robot, home and (by 1 m) of
 // every footprint, so that the way round stays open.
 int placeNewObstacles(biovision_sim::World& world, const cv::Point2d& from, const cv::Point2d& home, int n)
@@ -113,6 +143,56 @@ int placeNewObstacles(biovision_sim::World& world, const cv::Point2d& from, cons
   }
   return placed;
 }
+
+// The demo's rule (mission_director's place_obstacle) for a world file: one obstacle of the demo's size
+// halfway home on the straight line, else up to 0.4 of the way either side in steps of 0.05, else the
+// point of the path driven nearest halfway home; 1 m from the robot and home, 1 m from every footprint
+// but the target's. No check that the way round stays open (the director's way_round_open): a placement
+// that closes it shows up as a trial that does not return.
+int placeDemoObstacle(biovision_sim::World& world, const cv::Point2d& from, const cv::Point2d& home,
+                      const std::vector<cv::Point2d>& driven)
+{
+  biovision_sim::World others;
+  for (const auto& object : world.objects())
+    if (object.label != kTarget)
+      others.addObject(object);
+  const biovision_sim::FloorPlan plan(others);
+  const auto clear = [&](const cv::Point2d& q) {
+    return cv::norm(q - from) >= 1.0 && cv::norm(q - home) >= 1.0 && plan.clearance(q.x, q.y) >= 1.0;
+  };
+  std::vector<double> fractions;
+  for (int k = -8; k <= 8; ++k)
+    fractions.push_back(0.5 + 0.05 * k);
+  std::stable_sort(fractions.begin(), fractions.end(),
+                   [](double a, double b) { return std::abs(a - 0.5) < std::abs(b - 0.5); });
+  std::optional<cv::Point2d> where;
+  for (const double f : fractions)
+    if (clear(from + (home - from) * f))
+    {
+      where = from + (home - from) * f;
+      break;
+    }
+  if (!where)
+  {
+    const double half = cv::norm(home - from) / 2;
+    double best = HUGE_VAL;
+    for (size_t i = 0; i < driven.size(); i += 5)
+      if (clear(driven[i]) && std::abs(cv::norm(driven[i] - home) - half) < best)
+      {
+        best = std::abs(cv::norm(driven[i] - home) - half);
+        where = driven[i];
+      }
+  }
+  if (!where)
+    return 0;
+  biovision_sim::World::Object box;
+  box.label = "new_obstacle_1";
+  box.shape = "box";
+  box.position = Eigen::Vector3d(where->x, where->y, 0.25);
+  box.size = Eigen::Vector3d(0.45, 0.45, 0.5);  // mission.launch's new_crate
+  world.addObject(box);
+  return 1;
+}
 }  // namespace
 
 MissionTrialResult runMissionTrial(unsigned seed, const TaskParameters& tasks,
@@ -122,7 +202,9 @@ MissionTrialResult runMissionTrial(unsigned seed, const TaskParameters& tasks,
 {
   MissionTrialResult result;
   result.seed = seed;
-  biovision_sim::RoomWorldGenerator::Room room = biovision_sim::RoomWorldGenerator().generate(seed);
+  biovision_sim::RoomWorldGenerator::Room room = o.world_file.empty()
+                                                     ? biovision_sim::RoomWorldGenerator().generate(seed)
+                                                     : roomFromWorld(seed, o);
   biovision_sim::World& world = room.world;
   // The target where the generator put the goal; the robot starts facing away from it.
   biovision_sim::World::Object target;
@@ -131,7 +213,9 @@ MissionTrialResult runMissionTrial(unsigned seed, const TaskParameters& tasks,
   target.position = Eigen::Vector3d(room.goal_x, room.goal_y, 0.2);
   target.size = Eigen::Vector3d(0.3, 0.3, 0.4);
   world.addObject(target);
-  const double start_yaw = std::atan2(room.goal_y - room.start_y, room.goal_x - room.start_x) + M_PI;
+  const double start_yaw = o.world_file.empty()
+                               ? std::atan2(room.goal_y - room.start_y, room.goal_x - room.start_x) + M_PI
+                               : room.start_yaw;
   auto plan = std::make_unique<biovision_sim::FloorPlan>(world);
 
   biovision_sim::DifferentialDrive::Limits limits;
@@ -190,8 +274,10 @@ MissionTrialResult runMissionTrial(unsigned seed, const TaskParameters& tasks,
         const auto& f = manager.record().found.at(kTarget);
         result.found_error = std::hypot(f.x - room.goal_x, f.y - room.goal_y);
         result.target_found = {f.x, f.y};
-        result.new_obstacles_placed = placeNewObstacles(world, {pose.x, pose.y}, {room.start_x, room.start_y},
-                                                        o.new_obstacles);
+        const cv::Point2d here(pose.x, pose.y), home(room.start_x, room.start_y);
+        result.new_obstacles_placed = o.world_file.empty()  ? placeNewObstacles(world, here, home, o.new_obstacles)
+                                      : o.new_obstacles > 0 ? placeDemoObstacle(world, here, home, result.path)
+                                                            : 0;
         for (int k = 0; k < result.new_obstacles_placed; ++k)
         {
           const auto& added = world.objects()[world.objects().size() - result.new_obstacles_placed + k];

@@ -36,6 +36,14 @@ struct MissionTrialOptions
   int new_obstacles = 2;           ///< put on the way home once the target is found
   double servo_speed = 3.0;        ///< [rad/s]
   biovision_memory::ShortTermMemoryParameters stm;  ///< the STM's (mission_eval --set stm.NAME=VALUE)
+  /// A world file (biovision_sim's YAML, e.g. the demo's corridor.yaml) instead of the generated rooms: the
+  /// target where its object labelled world_target stands (that object taken out), the robot at the origin
+  /// facing +x as in the demo, moved by up to start_jitter m across and start_jitter rad per seed; the world
+  /// must lie within x in [-1, 11] m, y in [-5, 5] m (the LTM map's extent); one new obstacle at most, placed
+  /// by the demo's rule (mission_director). Empty: generated rooms.
+  std::string world_file;
+  std::string world_target = "target_box";
+  double start_jitter = 0.3;
 };
 
 /// One contact of the base with the world, and what the loop believed at that moment (mission_eval's JSON).

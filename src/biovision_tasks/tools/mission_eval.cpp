@@ -308,6 +308,15 @@ int main(int argc, char** argv)
       "camera's view (not stereo); recognition is an oracle (target centre in view within 3 m and not hidden, "
       "position + 0.1 m noise); odometry exact. Completed = found and return_home succeeded (within 0.3 m). "
       "Goal (issue 17): >= 9/10 completed with 0 collisions.";
+  if (!trial.world_file.empty())
+    document["notes"] =
+        "One world file (see world), not the generated rooms: the target (a 0.3 m box) where the world's own target "
+        "object stood, the start at the origin facing +x (as make demo), jittered per seed; once the target is "
+        "found one new 0.45 m box (mission.launch's new_crate) is put by mission_director's rule: halfway home on "
+        "the straight line, else up to 0.4 of the way either side, else the point of the path driven nearest "
+        "halfway, 1 m clear of the robot, home and every other footprint. No parameter was chosen on this world "
+        "with this tool. The rest as the generated rooms' notes: " +
+        document["notes"].get<std::string>();
   std::cout << document.dump(2) << "\n";
   document["scenes"] = per_trial;
   if (!json_path.empty())

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -105,6 +106,15 @@ int main(int argc, char** argv)
   options.app().add_option("--plots", plots_dir,
                            "write trial_<seed>.png (the path over the LTM) and report.html to this folder");
   options.parse(argc, argv);
+  try
+  {
+    checkMissionWorld(trial);
+  }
+  catch (const std::runtime_error& e)
+  {
+    std::cerr << e.what() << "\n";
+    return 2;
+  }
 
   TaskParameters tasks;
   biovision_attractor::BaseAttractorParameters base;

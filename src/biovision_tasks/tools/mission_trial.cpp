@@ -115,6 +115,9 @@ biovision_sim::RoomWorldGenerator::Room roomFromWorld(unsigned seed, const Missi
       room.world.addObject(object);  // geometry only: the trial's FloorPlan reads no texture
   if (!found)
     throw std::runtime_error("mission_eval: " + o.world_file + " has no object labelled '" + o.world_target + "'");
+  if (!(room.goal_x >= -1.0 && room.goal_x <= room.width + 1.0 && std::abs(room.goal_y) <= room.depth / 2 + 1.0))
+    throw std::runtime_error("mission_eval: " + o.world_file + "'s '" + o.world_target +
+                             "' lies outside the map's x in [-1, 11] m, y in [-5, 5] m");
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> jitter(-o.start_jitter, o.start_jitter);
   room.start_y = jitter(rng);
@@ -194,6 +197,12 @@ int placeDemoObstacle(biovision_sim::World& world, const cv::Point2d& from, cons
   return 1;
 }
 }  // namespace
+
+void checkMissionWorld(const MissionTrialOptions& o)
+{
+  if (!o.world_file.empty())
+    roomFromWorld(0, o);
+}
 
 MissionTrialResult runMissionTrial(unsigned seed, const TaskParameters& tasks,
                                    const biovision_attractor::BaseAttractorParameters& base,

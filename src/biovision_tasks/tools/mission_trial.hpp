@@ -88,7 +88,12 @@ struct MissionTrialResult
   OccupancyMap ltm;  ///< the LTM at the end, strength 0..100
 };
 
-/// Runs the mission of `seed`. Throws std::invalid_argument for bad parameters.
+/// Checks o.world_file before any trial: it parses, holds an object labelled o.world_target, and that object
+/// lies inside the LTM map's extent. Throws std::runtime_error saying which (nothing to check without a world).
+void checkMissionWorld(const MissionTrialOptions& o);
+
+/// Runs the mission of `seed`. Throws std::invalid_argument for bad parameters, std::runtime_error for a
+/// world file checkMissionWorld refuses.
 MissionTrialResult runMissionTrial(unsigned seed, const TaskParameters& tasks,
                                    const biovision_attractor::BaseAttractorParameters& base,
                                    const biovision_attractor::HeadAttractorParameters& head,

@@ -73,8 +73,12 @@ cv::Mat SaliencyPlot::renderThresholded(const cv::Mat& map, const std::vector<Re
       const int thickness = 1 + int(std::lround(2 * std::min(1.0, r.inhibition)));
       cv::line(image, box.tl(), box.br(), magenta, thickness, cv::LINE_AA);
       cv::line(image, {box.x, box.br().y}, {box.br().x, box.y}, magenta, thickness, cv::LINE_AA);
+      // Centred on the bottom edge, between the cross's two lines (at a corner they ran through its letters).
       const std::string ior = "IoR " + formatNumber(r.inhibition, 1);
-      cv::putText(image, ior, textOriginInside(image, ior, 0.35, {box.x + 2, box.br().y - 3}, kTitleHeight),
+      int baseline = 0;
+      const int width = cv::getTextSize(ior, cv::FONT_HERSHEY_SIMPLEX, 0.35, 1, &baseline).width;
+      cv::putText(image, ior,
+                  textOriginInside(image, ior, 0.35, {box.x + (box.width - width) / 2, box.br().y - 3}, kTitleHeight),
                   cv::FONT_HERSHEY_SIMPLEX, 0.35, magenta, 1, cv::LINE_AA);
     }
   }

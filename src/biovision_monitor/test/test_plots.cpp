@@ -274,7 +274,9 @@ TEST(SaliencyPlot, LabelsOfBoxesAtTheEdgesStayInsideAndBelowTheTileTitle)
   };
   EXPECT_GT(count(cv::Rect(103, kTitleHeight, 20, 12), red), 5) << "the rank below the title";
   EXPECT_EQ(count(cv::Rect(103, 2, 20, kTitleHeight - 3), red), 0) << "nothing of it under the title";
-  const cv::Point ior = textOriginInside(image, "IoR 0.8", 0.35, {-28, 277}, kTitleHeight);
+  int baseline = 0;
+  const int width = cv::getTextSize("IoR 0.8", cv::FONT_HERSHEY_SIMPLEX, 0.35, 1, &baseline).width;
+  const cv::Point ior = textOriginInside(image, "IoR 0.8", 0.35, {-30 + (80 - width) / 2, 277}, kTitleHeight);
   EXPECT_EQ(ior.x, 0);
   EXPECT_LT(ior.y, 240);
   // Right of the cross's lines (they leave the image below row 240 there): the label's letters alone.

@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "biovision_common/path_plot.hpp"
+#include "biovision_common/plot_title.hpp"
 
 using biovision_common::GridView;
 using biovision_common::PathPlot;
@@ -105,6 +106,32 @@ TEST(PathPlot, ALegendNamesThePathAndItsDiscsAtTheBottomRight)
   const cv::Rect legend(cv::Point(300, 324 - 20), cv::Point(520, 324));
   const cv::Point o = PathPlot::labelOrigin({500, 300}, text, image.size(), 24, {legend});
   EXPECT_EQ((cv::Rect(o.x, o.y - text.height, text.width, text.height + 3) & legend).area(), 0);
+}
+
+TEST(PathPlot, ASmallPlotLeavesTheLegendOutAndFarPointsAreIgnored)
+{
+  const std::vector<cv::Point2d> path = {{0.0, 5.0}, {1.0, 5.0}};  // drawn mid-height: the bottom rows free
+  auto bottom = [](const cv::Mat& image, const cv::Scalar& colour) {
+    int n = 0;
+    for (int y = image.rows - 20; y < image.rows; ++y)
+      for (int x = 0; x < image.cols; ++x)
+        n += asScalar(image.at<cv::Vec3b>(y, x)) == colour;
+    return n;
+  };
+  EXPECT_EQ(bottom(PathPlot().render(GridView(), {}, path, {}, "p", cv::Size(140, 100)), PathPlot::kStartColour), 0)
+      << "no legend where it would reach the scale bar";
+  EXPECT_GT(bottom(PathPlot().render(GridView(), {}, path, {}, "p", cv::Size(520, 324)), PathPlot::kStartColour), 0);
+  // A point 1e17 m out (the scale would underflow to 0 and draw everything at one pixel) is left out.
+  std::vector<cv::Point2d> far = path;
+  far.emplace_back(1e17, 0.0);
+  const cv::Mat image = PathPlot().render(GridView(), {}, far, {}, "p", cv::Size(520, 324));
+  int drawn = 0;
+  for (int y = 0; y < image.rows - 20; ++y)
+    for (int x = 0; x < image.cols; ++x)
+      drawn += asScalar(image.at<cv::Vec3b>(y, x)) == PathPlot::kPathColour;
+  EXPECT_GT(drawn, 200) << "the 1 m path still spans the plot";
+  cv::Mat empty;
+  EXPECT_NO_THROW(biovision_common::drawTitle(empty, "title"));
 }
 
 TEST(PathPlot, LabelsStayInsideTheImageAndOffTheTitle)

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <stdexcept>
+#include <string>
 
 #include <opencv2/imgproc.hpp>
 
@@ -9,6 +11,9 @@ namespace biovision_monitor
 {
 cv::Mat fitInto(const cv::Mat& image, cv::Size size, double* scale, cv::Point2d* offset)
 {
+  if (size.width < 1 || size.height < 1)
+    throw std::invalid_argument("fitInto: a tile of " + std::to_string(size.width) + " x " +
+                                std::to_string(size.height) + " px");
   cv::Mat tile(size, CV_8UC3, cv::Scalar(0, 0, 0));
   if (image.empty())
     return tile;
@@ -56,11 +61,15 @@ cv::Mat noDataTile(const std::string& topic, cv::Size size)
 
 cv::Point textOriginInside(const cv::Mat& image, const std::string& text, double scale, cv::Point wanted, int top)
 {
+  if (!(scale > 0 && scale <= 100))
+    throw std::invalid_argument("textOriginInside: font scale " + formatNumber(scale, 3) + " outside (0, 100]");
   int baseline = 0;
   const cv::Size size = cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, scale, 1, &baseline);
-  const int x = std::max(0, std::min(wanted.x, image.cols - size.width - 1));
-  const int y = std::max(top + size.height + 1, std::min(wanted.y, image.rows - baseline - 1));
-  return {x, y};
+  top = std::clamp(top, 0, image.rows);  // 64-bit sums below: no overflow whatever the ints
+  const long long x = std::max(0LL, std::min<long long>(wanted.x, 0LL + image.cols - size.width - 1));
+  const long long y = std::max<long long>(0LL + top + size.height + 1,
+                                          std::min<long long>(wanted.y, 0LL + image.rows - baseline - 1));
+  return {static_cast<int>(x), static_cast<int>(y)};
 }
 
 std::string formatNumber(double value, int digits)

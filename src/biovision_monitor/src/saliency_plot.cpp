@@ -57,9 +57,11 @@ cv::Mat SaliencyPlot::renderThresholded(const cv::Mat& map, const std::vector<Re
   std::sort(ordered.begin(), ordered.end(), [](const RegionView& a, const RegionView& b) { return a.rank > b.rank; });
   for (const RegionView& r : ordered)
   {
-    const cv::Rect box(cv::Point(int(offset.x + r.box.x * sx), int(offset.y + r.box.y * sy)),
-                       cv::Point(int(offset.x + (r.box.x + r.box.width) * sx),
-                                 int(offset.y + (r.box.y + r.box.height) * sy)));
+    // In double, clamped: a box of INT_MAX px would overflow the int sums.
+    const auto px = [](double v) { return static_cast<int>(std::clamp(v, -1e6, 1e6)); };
+    const cv::Rect box(cv::Point(px(offset.x + double(r.box.x) * sx), px(offset.y + double(r.box.y) * sy)),
+                       cv::Point(px(offset.x + (double(r.box.x) + r.box.width) * sx),
+                                 px(offset.y + (double(r.box.y) + r.box.height) * sy)));
     const bool attended = r.rank == 0;
     const cv::Scalar colour = attended ? cv::Scalar(0, 0, 255) : cv::Scalar(0, 220, 255);
     cv::rectangle(image, box, colour, attended ? 2 : 1, cv::LINE_AA);

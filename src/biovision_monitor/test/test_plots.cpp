@@ -1,4 +1,5 @@
 // The plots of known states have their features where they belong (ROS-free, no master).
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -295,6 +296,12 @@ TEST(Drawing, TextOriginInsideKeepsTheWholeTextInTheImageBelowTheTop)
   const cv::Point low = textOriginInside(image, "label", 0.4, {-40, 140}, 18);
   EXPECT_EQ(low.x, 0);
   EXPECT_LE(low.y + baseline, 100);
+  EXPECT_THROW(textOriginInside(image, "label", NAN, {50, 50}), std::invalid_argument);
+  const cv::Point extreme = textOriginInside(image, "label", 0.4, {INT_MAX, INT_MIN}, INT_MAX);
+  EXPECT_GE(extreme.x, 0);
+  EXPECT_LE(extreme.x, 200);
+  EXPECT_GT(extreme.y, 0);
+  EXPECT_THROW(fitInto(image, cv::Size(0, 0)), std::invalid_argument);
 }
 
 TEST(ObjectPlot, BoxesTheObjectWhereItIs)

@@ -76,6 +76,26 @@ TEST(MissionTrial, AWorldWithoutItsTargetOrWithTheTargetOffTheMapIsRefused)
   EXPECT_THROW(checkMissionWorld(o), std::runtime_error);
   o.world_file = writeWorld("mission_bad.yaml", "name: x\nobjects: [\n");
   EXPECT_THROW(checkMissionWorld(o), std::runtime_error);
+  const std::string walls = std::string(kWorld).substr(0, std::string(kWorld).find("  - {label: target_box"));
+  for (const char* target : {
+           "  - {label: target_box, shape: box, position: [0.5, 0.0, 0.2], size: [0.4, 0.3, 0.4]}\n",   // at the start
+           "  - {label: target_box, shape: box, position: [3.0, 1.25, 0.2], size: [0.4, 0.3, 0.4]}\n",  // in a wall
+           "  - {label: target_box, shape: box, position: [5.0, 0.0, 0.2], size: [8.0, 0.3, 0.4]}\n",   // 8 m wide
+       })
+  {
+    o.world_file = writeWorld("mission_target.yaml", walls + target);
+    EXPECT_THROW(checkMissionWorld(o), std::runtime_error) << target;
+  }
+  o.world_file = writeWorld("mission_two.yaml", std::string(kWorld) +
+                                                    "  - {label: target_box, shape: box, position: "
+                                                    "[6.0, 0.0, 0.2], size: [0.4, 0.3, 0.4]}\n");
+  EXPECT_THROW(checkMissionWorld(o), std::runtime_error) << "two targets";
+  o.world_file = writeWorld("mission_start.yaml", std::string(kWorld) +
+                                                      "  - {label: post, shape: cylinder, position: "
+                                                      "[0.0, 0.2, 0.5], radius: 0.1, height: 1}\n");
+  EXPECT_THROW(checkMissionWorld(o), std::runtime_error) << "the start beside a post";
+  o.world_file = "/dev/zero";
+  EXPECT_THROW(checkMissionWorld(o), std::runtime_error) << "not a regular file";
   o.world_file.clear();  // the generated rooms: nothing to check
   EXPECT_NO_THROW(checkMissionWorld(o));
 }

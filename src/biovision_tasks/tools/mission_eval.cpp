@@ -5,6 +5,7 @@
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -77,10 +78,10 @@ int main(int argc, char** argv)
       ->check(CLI::IsMember({"report", "tune"}));
   options.app()
       .add_option("--timeout", trial.timeout, "[s] of simulated time per mission")
-      ->check(biovision_common::kPositive);
+      ->check(CLI::Range(1e-3, 1e5));  // inf or 1e300 made the step count's cast undefined
   options.app()
       .add_option("--new-obstacles", trial.new_obstacles, "obstacles put on the way home")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, 20));  // each is a box 1 m clear of everything: a room holds a few
   std::vector<std::string> settings;
   options.app().add_option(
       "--set", settings,
@@ -100,12 +101,32 @@ int main(int argc, char** argv)
   options.app()
       .add_option("--start-jitter", trial.start_jitter,
                   "[m and rad] with --world: the start's seeded offset across and turn")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0.0, 1.0));  // the corridor is 2.4 m wide: more puts the start in or beyond a wall
   options.app().add_option("--json", json_path, "write the figures here");
   std::string plots_dir;
   options.app().add_option("--plots", plots_dir,
                            "write trial_<seed>.png (the path over the LTM) and report.html to this folder");
   options.parse(argc, argv);
+  if (static_cast<unsigned long long>(first_seed) + static_cast<unsigned long long>(trials) - 1 >
+      std::numeric_limits<unsigned>::max())
+  {
+    std::cerr << "mission_eval: --first-seed " << first_seed << " + --trials " << trials << " overflows the seeds\n";
+    return 2;
+  }
+  // Where the results go, checked before the trials rather than after them.
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!json_path.empty() &&
+      (fs::is_directory(json_path, ec) || !fs::is_directory(fs::absolute(json_path, ec).parent_path(), ec)))
+  {
+    std::cerr << "mission_eval: --json " << json_path << ": not a file in an existing folder\n";
+    return 2;
+  }
+  if (!plots_dir.empty() && fs::exists(plots_dir, ec) && !fs::is_directory(plots_dir, ec))
+  {
+    std::cerr << "mission_eval: --plots " << plots_dir << " exists and is not a folder\n";
+    return 2;
+  }
   try
   {
     checkMissionWorld(trial);
@@ -201,7 +222,14 @@ int main(int argc, char** argv)
   int completed = 0, found = 0, returned = 0, collisions = 0;
   std::vector<std::string> pictures;
   if (!plots_dir.empty())
-    std::filesystem::create_directories(plots_dir);
+  {
+    std::filesystem::create_directories(plots_dir, ec);
+    if (ec)
+    {
+      std::cerr << "mission_eval: --plots " << plots_dir << ": " << ec.message() << "\n";
+      return 2;
+    }
+  }
   double time_sum = 0, path_sum = 0, found_error_sum = 0, precision_sum = 0, home_sum = 0;
   for (int k = 0; k < trials; ++k)
   {
@@ -329,8 +357,8 @@ int main(int argc, char** argv)
         document["notes"].get<std::string>();
   std::cout << document.dump(2) << "\n";
   document["scenes"] = per_trial;
-  if (!json_path.empty())
-    biovision_common::writeJsonFile(json_path, document);
+  if (!options.writeJson(json_path, document))
+    return 1;
   if (!plots_dir.empty())
     biovision_common::PicturePage::write(plots_dir,
                                          "mission_eval: find and return, split " +

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <random>
@@ -94,11 +95,32 @@ OccupancyMap ltmMap(const biovision_memory::LongTermMemory& ltm, const biovision
   return OccupancyMap(m, ox, oy, cell);
 }
 
+constexpr std::uintmax_t kMaxWorldBytes = 1 << 20;  // corridor.yaml: 4 KB
+constexpr size_t kMaxWorldObjects = 100;            // corridor.yaml: 14
+constexpr double kStartClearance = 0.3;             // [m] the Pioneer's 0.26 m radius and a little
+
 // The demo's world as a room: the target object taken out (the trial puts its own there), the start at the
 // origin facing +x, moved across and turned by up to o.start_jitter per seed.
 biovision_sim::RoomWorldGenerator::Room roomFromWorld(unsigned seed, const MissionTrialOptions& o)
 {
+  // Bounded before parsing: the loader reads the whole file and builds a texture per object (1 MB each).
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::is_regular_file(o.world_file, ec) || fs::file_size(o.world_file, ec) > kMaxWorldBytes || ec)
+    throw std::runtime_error("mission_eval: " + o.world_file + " is not a regular file of at most " +
+                             std::to_string(kMaxWorldBytes) + " bytes");
   const biovision_sim::World loaded = biovision_sim::World::load(o.world_file);
+  if (loaded.objects().size() > kMaxWorldObjects)
+    throw std::runtime_error("mission_eval: " + o.world_file + " has " + std::to_string(loaded.objects().size()) +
+                             " objects, more than " + std::to_string(kMaxWorldObjects));
+  // Centres on the LTM map (x in [-1, 11] m, y in [-5, 5] m) or within 0.5 m of it (the corridor's back wall
+  // stands at x = -1.05): an object off the map would be an obstacle the planner can never know.
+  for (const auto& object : loaded.objects())
+    if (!object.position.allFinite() || !std::isfinite(object.yaw) || !object.size.allFinite() ||
+        !(object.position.x() >= -1.5 && object.position.x() <= 11.5 && std::abs(object.position.y()) <= 5.5) ||
+        !(object.size.maxCoeff() <= 100.0))
+      throw std::runtime_error("mission_eval: " + o.world_file + "'s '" + object.label +
+                               "' is not finite or lies off the map (x in [-1, 11] m, y in [-5, 5] m)");
   biovision_sim::RoomWorldGenerator::Room room;
   room.seed = seed;
   room.width = 10.0;  // ltmMap's extent: x in [-1, 11], y in [-5, 5]
@@ -107,6 +129,12 @@ biovision_sim::RoomWorldGenerator::Room roomFromWorld(unsigned seed, const Missi
   for (const auto& object : loaded.objects())
     if (object.label == o.world_target)
     {
+      if (found)
+        throw std::runtime_error("mission_eval: " + o.world_file + " has two objects labelled '" + o.world_target +
+                                 "'");
+      if (object.size.head<2>().maxCoeff() > 1.0)
+        throw std::runtime_error("mission_eval: " + o.world_file + "'s '" + o.world_target +
+                                 "' is wider than 1 m: not a target to find");
       room.goal_x = object.position.x();
       room.goal_y = object.position.y();
       found = true;
@@ -118,6 +146,17 @@ biovision_sim::RoomWorldGenerator::Room roomFromWorld(unsigned seed, const Missi
   if (!(room.goal_x >= -1.0 && room.goal_x <= room.width + 1.0 && std::abs(room.goal_y) <= room.depth / 2 + 1.0))
     throw std::runtime_error("mission_eval: " + o.world_file + "'s '" + o.world_target +
                              "' lies outside the map's x in [-1, 11] m, y in [-5, 5] m");
+  // A start the base fits at (any jitter) and a target standing free, away from it.
+  if (!(o.start_jitter >= 0.0 && o.start_jitter <= 1.0))
+    throw std::runtime_error("mission_eval: start_jitter outside [0, 1]");
+  const biovision_sim::FloorPlan plan(room.world);
+  for (const double y : {-o.start_jitter, 0.0, o.start_jitter})
+    if (plan.clearance(0.0, y) < kStartClearance)
+      throw std::runtime_error("mission_eval: " + o.world_file + ": the start (0, " + std::to_string(y) +
+                               ") is closer than " + std::to_string(kStartClearance) + " m to an object");
+  if (plan.clearance(room.goal_x, room.goal_y) <= 0.0 || std::hypot(room.goal_x, room.goal_y) < 1.0 + o.start_jitter)
+    throw std::runtime_error("mission_eval: " + o.world_file + "'s '" + o.world_target +
+                             "' stands inside another object or within 1 m of the start");
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> jitter(-o.start_jitter, o.start_jitter);
   room.start_y = jitter(rng);

@@ -88,8 +88,10 @@ struct MissionTrialResult
   OccupancyMap ltm;  ///< the LTM at the end, strength 0..100
 };
 
-/// Checks o.world_file before any trial: it parses, holds an object labelled o.world_target, and that object
-/// lies inside the LTM map's extent. Throws std::runtime_error saying which (nothing to check without a world).
+/// Checks o.world_file before any trial: a regular file of at most 1 MiB that parses, at most 100 objects, all
+/// finite with centres within 0.5 m of the LTM map's extent, exactly one object labelled o.world_target, at most 1 m wide, inside the LTM map's
+/// extent, standing free and 1 m + start_jitter from the start, and a start (any jitter) 0.3 m clear of every
+/// object. Throws std::runtime_error saying which (nothing to check without a world).
 void checkMissionWorld(const MissionTrialOptions& o);
 
 /// Runs the mission of `seed`. Throws std::invalid_argument for bad parameters, std::runtime_error for a

@@ -30,7 +30,9 @@ public:
   /// A CV_8UC3 image of `size` on white: the grid (when not empty; cell (0, 0)'s corner at `origin` [m],
   /// the shades of GridView::toImage) and the path (polyline 2 px, start and end as 5 px discs) and marks
   /// (6 px discs or rings, the first 500 labelled), fitted together with a 0.5 m margin below a 24 px title strip. An
-  /// empty grid and path give the marks alone (or a blank titled tile). Throws std::invalid_argument for a
+  /// empty grid and path give the marks alone (or a blank titled tile). Points not finite or beyond 1e6 m
+  /// (and a grid placed there) are left out. A 1 m scale bar bottom left and a legend (path, start, end)
+  /// bottom right, left out where it would reach the bar. Throws std::invalid_argument for a
   /// grid whose data does not match its size, a non-positive resolution of a non-empty grid, or a size
   /// smaller than 64 x 64 px.
   cv::Mat render(const GridView& grid, cv::Point2d origin, const std::vector<cv::Point2d>& path,

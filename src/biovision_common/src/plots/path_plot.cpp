@@ -14,6 +14,12 @@ const cv::Scalar PathPlot::kPathColour(200, 80, 0), PathPlot::kStartColour(0, 15
 namespace
 {
 const cv::Scalar kBackground(255, 255, 255), kAxis(0, 0, 0);
+
+// A point to draw: finite and within 1e6 m (beyond, the metres-to-pixels scale underflows).
+bool usable(cv::Point2d p)
+{
+  return std::abs(p.x) <= 1e6 && std::abs(p.y) <= 1e6;
+}
 }  // namespace
 
 cv::Mat PathPlot::render(const GridView& grid, cv::Point2d origin, const std::vector<cv::Point2d>& path,
@@ -31,11 +37,13 @@ cv::Mat PathPlot::render(const GridView& grid, cv::Point2d origin, const std::ve
   // The extent in metres of everything drawn, plus a margin.
   double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
   auto extend = [&](cv::Point2d p) {
-    if (!std::isfinite(p.x) || !std::isfinite(p.y))
+    if (!usable(p))
       return;
     x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
   };
-  if (have_grid)
+  const bool grid_placeable = usable(origin) &&
+                              usable(origin + cv::Point2d(grid.width * grid.resolution, grid.height * grid.resolution));
+  if (have_grid && grid_placeable)
   {
     extend(origin);
     extend(origin + cv::Point2d(grid.width * grid.resolution, grid.height * grid.resolution));
@@ -59,7 +67,7 @@ cv::Mat PathPlot::render(const GridView& grid, cv::Point2d origin, const std::ve
     return cv::Point(int(std::lround(offset.x + (p.x - x0) * scale)), int(std::lround(offset.y + (y1 - p.y) * scale)));
   };
 
-  if (have_grid)
+  if (have_grid && grid_placeable)
   {
     // Grid row 0 (y = origin.y) is the image's last row; place it by its corners.
     const cv::Point a = px(origin + cv::Point2d(0, grid.height * grid.resolution));
@@ -76,7 +84,7 @@ cv::Mat PathPlot::render(const GridView& grid, cv::Point2d origin, const std::ve
   }
   std::vector<cv::Point> line;
   for (const auto& p : path)
-    if (std::isfinite(p.x) && std::isfinite(p.y))
+    if (usable(p))
       line.push_back(px(p));
   cv::Mat path_mask(size, CV_8UC1, cv::Scalar(0));  // what labels should not cover
   std::vector<cv::Rect> taken;
@@ -98,7 +106,7 @@ cv::Mat PathPlot::render(const GridView& grid, cv::Point2d origin, const std::ve
   // Every mark first, then the labels around them.
   std::vector<std::pair<cv::Point, const Mark*>> shown;
   for (const auto& m : marks)
-    if (std::isfinite(m.position.x) && std::isfinite(m.position.y))
+    if (usable(m.position))
     {
       const cv::Point p = px(m.position);
       cv::circle(image, p, 6, m.colour, m.filled ? cv::FILLED : 2, cv::LINE_8);
@@ -110,7 +118,16 @@ cv::Mat PathPlot::render(const GridView& grid, cv::Point2d origin, const std::ve
   cv::line(image, bar0, bar1, kAxis, 2);
   cv::putText(image, "1 m", bar1 + cv::Point(6, 4), cv::FONT_HERSHEY_SIMPLEX, 0.4, kAxis, 1, cv::LINE_AA);
   taken.emplace_back(cv::Point(bar0.x, bar0.y - 10), cv::Point(bar1.x + 36, size.height));
-  {  // Legend, bottom right on the scale bar's row: what the path and its two discs are.
+  // Legend, bottom right on the scale bar's row: what the path and its two discs are; left out where it would
+  // reach the scale bar's label (a small plot).
+  int legend_width = 0;
+  for (const char* name : {"end", "start", "path"})
+  {
+    int baseline = 0;
+    legend_width += cv::getTextSize(name, cv::FONT_HERSHEY_SIMPLEX, 0.4, 1, &baseline).width + 24;
+  }
+  if (size.width - 8 - legend_width > bar1.x + 40)
+  {
     int right = size.width - 8;
     const std::pair<const char*, cv::Scalar> entries[] = {{"end", kEndColour}, {"start", kStartColour}};
     for (const auto& [name, colour] : entries)

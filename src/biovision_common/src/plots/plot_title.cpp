@@ -8,6 +8,8 @@ namespace biovision_common
 {
 void drawTitle(cv::Mat& image, const std::string& text)
 {
+  if (image.empty())
+    return;
   const int h = std::min(kTitleHeight, image.rows);
   cv::Mat strip = image(cv::Rect(0, 0, image.cols, h));
   strip = strip * 0.35;

@@ -24,7 +24,8 @@ const cv::Scalar kText(255, 255, 255);
 }  // namespace colours
 
 /// `image` (CV_8UC1 or CV_8UC3) scaled to fit inside `size` keeping its aspect ratio, centred on black.
-/// `scale` and `offset` receive the mapping image px -> tile px (tile = image * scale + offset).
+/// `scale` and `offset` receive the mapping image px -> tile px (tile = image * scale + offset). Throws
+/// std::invalid_argument for a `size` below 1 x 1.
 cv::Mat fitInto(const cv::Mat& image, cv::Size size, double* scale = nullptr, cv::Point2d* offset = nullptr);
 
 /// A tile of `size` saying "no data on <topic>" (dark grey, centred white text), for a panel whose
@@ -36,7 +37,8 @@ using biovision_common::drawTitle;
 using biovision_common::kTitleHeight;
 /// The baseline origin nearest `wanted` at which `text` (FONT_HERSHEY_SIMPLEX, `scale`, thickness 1) lies
 /// wholly inside `image` below row `top` (a label of a box cut by the image's edge stays readable); the
-/// left or top edge wins where the text is larger than the room.
+/// left or top edge wins where the text is larger than the room. Throws std::invalid_argument for a scale
+/// outside (0, 100].
 cv::Point textOriginInside(const cv::Mat& image, const std::string& text, double scale, cv::Point wanted, int top = 0);
 
 /// Draws `text` centred horizontally at baseline row `y`, scaled down until it fits the width.

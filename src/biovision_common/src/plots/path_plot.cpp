@@ -118,32 +118,37 @@ cv::Mat PathPlot::render(const GridView& grid, cv::Point2d origin, const std::ve
   cv::line(image, bar0, bar1, kAxis, 2);
   cv::putText(image, "1 m", bar1 + cv::Point(6, 4), cv::FONT_HERSHEY_SIMPLEX, 0.4, kAxis, 1, cv::LINE_AA);
   taken.emplace_back(cv::Point(bar0.x, bar0.y - 10), cv::Point(bar1.x + 36, size.height));
-  // Legend, bottom right on the scale bar's row: what the path and its two discs are; left out where it would
-  // reach the scale bar's label (a small plot).
+  // Legend, bottom right on the scale bar's row, right to left: what the discs and the path are; left out
+  // where it would reach the scale bar's label (a small plot).
+  struct Entry
+  {
+    const char* name;
+    cv::Scalar colour;
+    bool stroke;  // the path's stroke, else a disc
+    int width;    // of the name [px]
+  };
+  Entry entries[] = {{"end", kEndColour, false, 0}, {"start", kStartColour, false, 0}, {"path", kPathColour, true, 0}};
   int legend_width = 0;
-  for (const char* name : {"end", "start", "path"})
+  for (Entry& e : entries)
   {
     int baseline = 0;
-    legend_width += cv::getTextSize(name, cv::FONT_HERSHEY_SIMPLEX, 0.4, 1, &baseline).width + 24;
+    e.width = cv::getTextSize(e.name, cv::FONT_HERSHEY_SIMPLEX, 0.4, 1, &baseline).width;
+    legend_width += e.width + 24;
   }
   if (size.width - 8 - legend_width > bar1.x + 40)
   {
     int right = size.width - 8;
-    const std::pair<const char*, cv::Scalar> entries[] = {{"end", kEndColour}, {"start", kStartColour}};
-    for (const auto& [name, colour] : entries)
+    for (const Entry& e : entries)
     {
-      int baseline = 0;
-      const int width = cv::getTextSize(name, cv::FONT_HERSHEY_SIMPLEX, 0.4, 1, &baseline).width;
-      cv::putText(image, name, {right - width, size.height - 8}, cv::FONT_HERSHEY_SIMPLEX, 0.4, kAxis, 1, cv::LINE_AA);
-      cv::circle(image, {right - width - 9, size.height - 12}, 5, colour, cv::FILLED, cv::LINE_8);
-      right -= width + 24;
+      const int x = right - e.width, y = size.height - 12;
+      cv::putText(image, e.name, {x, size.height - 8}, cv::FONT_HERSHEY_SIMPLEX, 0.4, kAxis, 1, cv::LINE_AA);
+      if (e.stroke)
+        cv::line(image, {x - 22, y}, {x - 4, y}, e.colour, 2);
+      else
+        cv::circle(image, {x - 9, y}, 5, e.colour, cv::FILLED, cv::LINE_8);
+      right -= e.width + 24;
     }
-    int baseline = 0;
-    const int width = cv::getTextSize("path", cv::FONT_HERSHEY_SIMPLEX, 0.4, 1, &baseline).width;
-    cv::putText(image, "path", {right - width, size.height - 8}, cv::FONT_HERSHEY_SIMPLEX, 0.4, kAxis, 1, cv::LINE_AA);
-    cv::line(image, {right - width - 22, size.height - 12}, {right - width - 4, size.height - 12}, kPathColour, 2);
-    taken.emplace_back(cv::Point(right - width - 22, size.height - 20),
-                       cv::Point(size.width, size.height));  // no label over them
+    taken.emplace_back(cv::Point(right, size.height - 20), cv::Point(size.width, size.height));  // no label over it
   }
   // Each label is placed against every one before it: the first kMaxLabels only (a helper's 10,000 labelled
   // marks took 5 s; a mission report has tens).

@@ -15,7 +15,8 @@ rm -rf build/test_results
 mkdir -p "$ROS_HOME"
 log=build/run_tests.log
 echo "run_tests: running gtests and rostests (log: $log)"
-# -j1: rostests each start a master on the same port; run them one after another.
+# -j1, one test after another: each rostest starts its own master on a free port, but the closed-loop ones
+# (simulator + perception at camera rate) need both cores to keep their rates and deadlines.
 make -C build run_tests -j1 >"$log" 2>&1
 build_rc=$?
 grep -E '^\[ *(RUN|  *OK|  FAILED|  PASSED|  SKIPPED) *\]|^\[ROSTEST\]|^\[Testcase|FAILURE|Error' "$log" | grep -vE '^\[ +RUN' | tail -n 200 || true

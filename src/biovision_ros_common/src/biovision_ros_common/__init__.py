@@ -1,0 +1,1 @@
+"""Python helpers shared by BioVision's Python nodes (reports, mission director, teacher)."""

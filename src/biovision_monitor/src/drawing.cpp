@@ -72,6 +72,19 @@ cv::Point textOriginInside(const cv::Mat& image, const std::string& text, double
   return {static_cast<int>(x), static_cast<int>(y)};
 }
 
+cv::Rect putLabel(cv::Mat& image, const std::string& text, double scale, cv::Point wanted, const cv::Scalar& colour,
+                  int top)
+{
+  const cv::Point at = textOriginInside(image, text, scale, wanted, top);
+  int baseline = 0;
+  const cv::Size size = cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, scale, 1, &baseline);
+  const cv::Rect plate = cv::Rect(at.x - 2, at.y - size.height - 2, size.width + 4, size.height + baseline + 4) &
+                         cv::Rect(0, 0, image.cols, image.rows);
+  cv::rectangle(image, plate, colours::kLabelPlate, cv::FILLED);
+  cv::putText(image, text, at, cv::FONT_HERSHEY_SIMPLEX, scale, colour, 1, cv::LINE_AA);
+  return plate;
+}
+
 std::string formatNumber(double value, int digits)
 {
   char buffer[64];

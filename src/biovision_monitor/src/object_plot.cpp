@@ -25,12 +25,7 @@ cv::Mat ObjectPlot::render(const cv::Mat& image, const std::vector<ObjectView>& 
                          cv::Point(int(offset.x + (o.box.x + o.box.width) * scale),
                                    int(offset.y + (o.box.y + o.box.height) * scale)));
       cv::rectangle(tile, box, green, 2, cv::LINE_AA);
-      int baseline = 0;
-      const cv::Size text = cv::getTextSize(label, cv::FONT_HERSHEY_SIMPLEX, 0.4, 1, &baseline);
-      const cv::Point at = textOriginInside(tile, label, 0.4, {box.x, box.y - 3}, kTitleHeight + 2);
-      cv::rectangle(tile, {at.x, at.y - text.height - 2}, {at.x + text.width, at.y + 2}, cv::Scalar(0, 0, 0),
-                    cv::FILLED);
-      cv::putText(tile, label, at, cv::FONT_HERSHEY_SIMPLEX, 0.4, green, 1, cv::LINE_AA);
+      putLabel(tile, label, 0.4, {box.x, box.y - 3}, green, kTitleHeight + 2);
     }
     else  // no box: listed at the left
     {

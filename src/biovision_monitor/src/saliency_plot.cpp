@@ -11,6 +11,11 @@
 
 namespace biovision_monitor
 {
+namespace
+{
+const cv::Scalar kInhibition(255, 0, 255);  // magenta: the inhibition-of-return cross and its label
+}  // namespace
+
 SaliencyPlot::SaliencyPlot(double threshold) : threshold_(threshold)
 {
   if (!(threshold >= 0 && threshold <= 1))
@@ -65,23 +70,21 @@ cv::Mat SaliencyPlot::renderThresholded(const cv::Mat& map, const std::vector<Re
     const bool attended = r.rank == 0;
     const cv::Scalar colour = attended ? cv::Scalar(0, 0, 255) : cv::Scalar(0, 220, 255);
     cv::rectangle(image, box, colour, attended ? 2 : 1, cv::LINE_AA);
-    // Labels inside the image and below a panel's tile title, wherever the box reaches.
-    const std::string rank = "#" + std::to_string(r.rank);
-    cv::putText(image, rank, textOriginInside(image, rank, 0.4, {box.x + 2, box.y + 12}, kTitleHeight),
-                cv::FONT_HERSHEY_SIMPLEX, 0.4, colour, 1, cv::LINE_AA);
     if (r.inhibition > 0.01 && std::isfinite(r.inhibition))
     {
-      const cv::Scalar magenta(255, 0, 255);
       const int thickness = 1 + int(std::lround(2 * std::min(1.0, r.inhibition)));
-      cv::line(image, box.tl(), box.br(), magenta, thickness, cv::LINE_AA);
-      cv::line(image, {box.x, box.br().y}, {box.br().x, box.y}, magenta, thickness, cv::LINE_AA);
-      // Centred on the bottom edge, between the cross's two lines (at a corner they ran through its letters).
+      cv::line(image, box.tl(), box.br(), kInhibition, thickness, cv::LINE_AA);
+      cv::line(image, {box.x, box.br().y}, {box.br().x, box.y}, kInhibition, thickness, cv::LINE_AA);
+    }
+    // Labels after the cross, on dark plates (yellow and magenta were unreadable on the white blobs and under
+    // the cross's lines), inside the image and below a panel's tile title wherever the box reaches.
+    putLabel(image, "#" + std::to_string(r.rank), 0.4, {box.x + 2, box.y + 12}, colour, kTitleHeight);
+    if (r.inhibition > 0.01 && std::isfinite(r.inhibition))
+    {
       const std::string ior = "IoR " + formatNumber(r.inhibition, 1);
       int baseline = 0;
       const int width = cv::getTextSize(ior, cv::FONT_HERSHEY_SIMPLEX, 0.35, 1, &baseline).width;
-      cv::putText(image, ior,
-                  textOriginInside(image, ior, 0.35, {box.x + (box.width - width) / 2, box.br().y - 3}, kTitleHeight),
-                  cv::FONT_HERSHEY_SIMPLEX, 0.35, magenta, 1, cv::LINE_AA);
+      putLabel(image, ior, 0.35, {box.x + (box.width - width) / 2, box.br().y - 3}, kInhibition, kTitleHeight);
     }
   }
   return image;

@@ -284,6 +284,36 @@ TEST(SaliencyPlot, LabelsOfBoxesAtTheEdgesStayInsideAndBelowTheTileTitle)
   EXPECT_GT(count(cv::Rect(10, ior.y - 8, 30, 9), magenta), 5) << "the label inside the image";
 }
 
+TEST(SaliencyPlot, LabelsStayReadableOnTheWhiteBlobAndOverTheCross)
+{
+  // A salient blob everywhere (white) and an inhibited box whose cross runs through both labels' places.
+  const cv::Mat map(120, 160, CV_32FC1, cv::Scalar(1.0f));
+  RegionView inhibited;
+  inhibited.rank = 1;
+  inhibited.box = cv::Rect(100, 100, 60, 60);
+  inhibited.inhibition = 0.5;
+  const cv::Mat image = SaliencyPlot(0.15).renderThresholded(map, {inhibited}, 320, 240, kSize);
+  int baseline = 0;
+  for (const auto& label : {std::make_pair(std::string("#1"), 0.4), std::make_pair(std::string("IoR 0.5"), 0.35)})
+  {
+    const cv::Size size = cv::getTextSize(label.first, cv::FONT_HERSHEY_SIMPLEX, label.second, 1, &baseline);
+    // Where the plot puts it (as renderThresholded: the box is at scale 1 here, kSize = 320 x 240).
+    const cv::Point wanted = label.first == "#1" ? cv::Point(102, 112) : cv::Point(100 + (60 - size.width) / 2, 157);
+    const cv::Point at = textOriginInside(image, label.first, label.second, wanted, kTitleHeight);
+    const cv::Rect text(at.x, at.y - size.height, size.width, size.height + baseline);
+    int dark = 0, white = 0;
+    for (int y = text.y; y < text.br().y; ++y)
+      for (int x = text.x; x < text.br().x; ++x)
+      {
+        const cv::Vec3b p = image.at<cv::Vec3b>(y, x);
+        dark += p[0] < 60 && p[1] < 60 && p[2] < 60;
+        white += p[0] > 200 && p[1] > 200 && p[2] > 200;
+      }
+    EXPECT_GT(dark, text.area() / 3) << label.first << ": on a dark plate";
+    EXPECT_EQ(white, 0) << label.first << ": no white blob showing through the letters";
+  }
+}
+
 TEST(Drawing, TextOriginInsideKeepsTheWholeTextInTheImageBelowTheTop)
 {
   const cv::Mat image(100, 200, CV_8UC3);

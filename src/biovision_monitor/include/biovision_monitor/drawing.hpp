@@ -21,6 +21,7 @@ const cv::Scalar kSum(200, 80, 0);
 const cv::Scalar kCurrent(0, 140, 255);
 const cv::Scalar kNoData(60, 60, 60);
 const cv::Scalar kText(255, 255, 255);
+const cv::Scalar kLabelPlate(20, 20, 20);  // behind box labels (putLabel)
 }  // namespace colours
 
 /// `image` (CV_8UC1 or CV_8UC3) scaled to fit inside `size` keeping its aspect ratio, centred on black.
@@ -40,6 +41,13 @@ using biovision_common::kTitleHeight;
 /// left or top edge wins where the text is larger than the room. Throws std::invalid_argument for a scale
 /// outside (0, 100].
 cv::Point textOriginInside(const cv::Mat& image, const std::string& text, double scale, cv::Point wanted, int top = 0);
+
+/// Draws `text` (FONT_HERSHEY_SIMPLEX, `scale`, thickness 1, `colour`) at textOriginInside(image, text, scale,
+/// wanted, top) on a dark plate (colours::kLabelPlate) 2 px wider on every side, so that it stays readable on
+/// white salient blobs and over lines drawn before it. Returns the plate's rectangle (clipped to the image).
+/// Throws std::invalid_argument as textOriginInside.
+cv::Rect putLabel(cv::Mat& image, const std::string& text, double scale, cv::Point wanted, const cv::Scalar& colour,
+                  int top = 0);
 
 /// Draws `text` centred horizontally at baseline row `y`, scaled down until it fits the width.
 void putTextCentred(cv::Mat& image, const std::string& text, int y, const cv::Scalar& colour, double scale = 0.5);

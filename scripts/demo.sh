@@ -35,7 +35,7 @@ tail -n +2 "$out/report.md"
 [[ -f "$out/fixations.md" ]] && { echo; cat "$out/fixations.md"; }
 [[ -f "$out/recognition.md" ]] && { echo; cat "$out/recognition.md"; }
 [[ -f "$out/report.html" ]] && { echo; echo "Pictures and report: $out/report.html"; }
-echo "Logs: $out/roslaunch.log (the launch), $ROS_HOME/log/latest/ (each node's own log)"
+echo "Logs: $out/roslaunch.log (the launch and the nodelets' messages), $ROS_HOME/log/latest/ (the Python nodes' own logs, rosout.log)"
 /usr/bin/python3 -c 'import json,sys; sys.exit(0 if json.load(open(sys.argv[1]))["ok"] else 1)' "$out/report.json" || exit 1
 if [[ $scenario == mission ]]; then
   # The demo fails when the mission did not run to an outcome; a mission that ran and failed (object

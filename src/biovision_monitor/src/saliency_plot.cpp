@@ -70,7 +70,8 @@ cv::Mat SaliencyPlot::renderThresholded(const cv::Mat& map, const std::vector<Re
     const bool attended = r.rank == 0;
     const cv::Scalar colour = attended ? cv::Scalar(0, 0, 255) : cv::Scalar(0, 220, 255);
     cv::rectangle(image, box, colour, attended ? 2 : 1, cv::LINE_AA);
-    if (r.inhibition > 0.01 && std::isfinite(r.inhibition))
+    const bool inhibited = r.inhibition > 0.01 && std::isfinite(r.inhibition);
+    if (inhibited)
     {
       const int thickness = 1 + int(std::lround(2 * std::min(1.0, r.inhibition)));
       cv::line(image, box.tl(), box.br(), kInhibition, thickness, cv::LINE_AA);
@@ -79,7 +80,7 @@ cv::Mat SaliencyPlot::renderThresholded(const cv::Mat& map, const std::vector<Re
     // Labels after the cross, on dark plates (yellow and magenta were unreadable on the white blobs and under
     // the cross's lines), inside the image and below a panel's tile title wherever the box reaches.
     putLabel(image, "#" + std::to_string(r.rank), 0.4, {box.x + 2, box.y + 12}, colour, kTitleHeight);
-    if (r.inhibition > 0.01 && std::isfinite(r.inhibition))
+    if (inhibited)
     {
       const std::string ior = "IoR " + formatNumber(r.inhibition, 1);
       int baseline = 0;

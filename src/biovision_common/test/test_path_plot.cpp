@@ -55,12 +55,13 @@ TEST(PathPlot, PathStartEndMarksAndMapShareOneMetricFrame)
   auto px = [](double x, double y) {
     return cv::Point(int(std::lround(10 + (x + 0.5) * 100)), int(std::lround(24 + (2.5 - y) * 100)));
   };
-  EXPECT_EQ(image.at<cv::Vec3b>(px(3.05, 1.05)), cv::Vec3b(0, 0, 0));              // the occupied cell
-  EXPECT_EQ(image.at<cv::Vec3b>(px(1.05, 1.55)), cv::Vec3b(255, 255, 255));        // free cells
-  EXPECT_EQ(asScalar(image.at<cv::Vec3b>(px(2.0, 0.5))), PathPlot::kPathColour);   // on the path
-  EXPECT_EQ(asScalar(image.at<cv::Vec3b>(px(0.5, 0.5))), PathPlot::kStartColour);  // its start
-  EXPECT_EQ(asScalar(image.at<cv::Vec3b>(px(3.5, 0.5))), PathPlot::kEndColour);    // its end
-  EXPECT_EQ(image.at<cv::Vec3b>(px(3.5, 1.5)), cv::Vec3b(0, 200, 255));            // the goal mark
+  EXPECT_EQ(image.at<cv::Vec3b>(px(3.05, 1.05)), cv::Vec3b(0, 0, 0));             // the occupied cell
+  EXPECT_EQ(image.at<cv::Vec3b>(px(1.05, 1.55)), cv::Vec3b(255, 255, 255));       // free cells
+  EXPECT_EQ(asScalar(image.at<cv::Vec3b>(px(2.0, 0.5))), PathPlot::kPathColour);  // on the path
+  EXPECT_EQ(asScalar(image.at<cv::Vec3b>(px(0.5, 0.5) + cv::Point(0, -9))),
+            PathPlot::kStartColour);                                             // its start's ring
+  EXPECT_EQ(asScalar(image.at<cv::Vec3b>(px(3.5, 0.5))), PathPlot::kEndColour);  // its end
+  EXPECT_EQ(image.at<cv::Vec3b>(px(3.5, 1.5)), cv::Vec3b(0, 200, 255));          // the goal mark
   // Off the path, the map and the marks: the white background; 1 m above the path's middle: free map.
   EXPECT_EQ(image.at<cv::Vec3b>(px(-0.3, 2.3)), cv::Vec3b(255, 255, 255));
   EXPECT_NE(asScalar(image.at<cv::Vec3b>(px(2.0, 1.0))), PathPlot::kPathColour);
@@ -71,6 +72,9 @@ TEST(PathPlot, PathStartEndMarksAndMapShareOneMetricFrame)
   EXPECT_EQ(marked.at<cv::Vec3b>(px(2.0, 1.5)), cv::Vec3b(255, 255, 255));
   EXPECT_EQ(marked.at<cv::Vec3b>(px(2.0, 1.5) + cv::Point(6, 0)), cv::Vec3b(255, 0, 255));
   EXPECT_EQ(marked.at<cv::Vec3b>(px(0.5, 0.5)), cv::Vec3b(255, 0, 255));
+  // ... and the start's ring around home stays visible (home's disc had hidden the start).
+  EXPECT_EQ(asScalar(marked.at<cv::Vec3b>(px(0.5, 0.5) + cv::Point(0, -9))), PathPlot::kStartColour);
+  EXPECT_EQ(asScalar(marked.at<cv::Vec3b>(px(0.5, 0.5) + cv::Point(-9, 0))), PathPlot::kStartColour);
   // Nothing at all still gives a titled tile; bad grids and sizes throw.
   EXPECT_EQ(PathPlot().render(GridView(), {}, {}, {}, "empty", cv::Size(100, 100)).size(), cv::Size(100, 100));
   EXPECT_THROW(PathPlot().render(GridView(), {}, path, {}, "small", cv::Size(63, 100)), std::invalid_argument);
@@ -99,7 +103,7 @@ TEST(PathPlot, ALegendNamesThePathAndItsDiscsAtTheBottomRight)
     return n;
   };
   EXPECT_GT(count(PathPlot::kPathColour), 20) << "the path's stroke";
-  EXPECT_GT(count(PathPlot::kStartColour), 20) << "the start's disc";
+  EXPECT_GT(count(PathPlot::kStartColour), 20) << "the start's ring";
   EXPECT_GT(count(PathPlot::kEndColour), 20) << "the end's disc";
   // A labelled mark in that corner puts its label elsewhere than over the legend.
   const cv::Size text(40, 10);

@@ -200,7 +200,8 @@ cv::Mat pathPicture(const std::string& dir, const nlohmann::json& mission)
                      kObstacle,
                      true});
   marks.push_back({point(mission.value("target_truth", nlohmann::json())), target, kTarget, true});
-  marks.push_back({point(mission.value("target_remembered", nlohmann::json())), "", kTarget, false});
+  // Named, or the ring beside the target's disc is unexplained.
+  marks.push_back({point(mission.value("target_remembered", nlohmann::json())), "remembered", kTarget, false});
   marks.push_back({point(mission.value("home", nlohmann::json())), "home", kHome, true});
   return biovision_common::PathPlot().render(grid, origin, path, marks,
                                              "path driven over the long-term memory (map frame)", cv::Size(720, 560));
@@ -352,8 +353,13 @@ std::vector<std::string> RunReport::write() const
     if (!f)
       continue;
     const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-    page << "<h2>" << picture << "</h2>\n<img alt=\"" << picture << "\" src=\"data:image/png;base64," << base64(bytes)
-         << "\">\n";
+    page << "<h2>" << picture << "</h2>\n";
+    if (std::string(picture) == "path.png")  // what the marks mean: the picture has room for names only
+      page << "<p>The long-term memory built on the way (black occupied, grey unknown), the path (start ring, end "
+              "disc), home, the target where it is (disc) and where the memory put it (ring), the new obstacle the "
+              "mission put on the way home after the target was found, and the other remembered objects (grey "
+              "rings).</p>\n";
+    page << "<img alt=\"" << picture << "\" src=\"data:image/png;base64," << base64(bytes) << "\">\n";
   }
   if (have_report)
   {

@@ -10,6 +10,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "biovision_common/path_plot.hpp"
 #include "biovision_monitor/attractor_plot.hpp"
 #include "biovision_monitor/disparity_plot.hpp"
 #include "biovision_monitor/drawing.hpp"
@@ -523,6 +524,34 @@ TEST(RunReport, WritesPicturesAndASelfContainedPage)
   EXPECT_NE(text3.str().find("-5.0 / 40.0"), std::string::npos);
   EXPECT_FALSE(cv::imread(dir + "/rates.png").empty());
   for (const char* f : {"pan.csv", "fixations.json", "report.json", "report.html", "pan.png", "rates.png"})
+    std::remove((dir + "/" + f).c_str());
+  rmdir(folder);
+}
+
+TEST(RunReport, PathPictureShowsTheStartAroundHomeAndNamesTheRememberedTarget)
+{
+  char folder[] = "/tmp/run_report_pathXXXXXX";
+  ASSERT_NE(mkdtemp(folder), nullptr);
+  const std::string dir = folder;
+  // A mission that starts at home (0, 0), drives to (4, 0) and back; the target at (5, 1), remembered at (5, 1.5).
+  std::ofstream(dir + "/path.csv") << "t,x,y\n0,0,0\n1,2,0\n2,4,0\n3,2,0.2\n4,0.05,0\n";
+  std::ofstream(dir + "/mission.json")
+      << R"({"mission": "find_and_return", "target": "box", "home": [0, 0], "target_truth": [5, 1],)"
+      << R"( "target_remembered": [5, 1.5], "found": true, "returned": true})";
+  RunReport(dir).write();
+  const cv::Mat path = cv::imread(dir + "/path.png");
+  ASSERT_FALSE(path.empty());
+  // The start's ring (kStartColour) shows around home's disc: the two are at the same place.
+  int start = 0;
+  for (int y = 0; y < path.rows - 24; ++y)  // above the legend's row
+    for (int x = 0; x < path.cols; ++x)
+      start += cv::Scalar(path.at<cv::Vec3b>(y, x)) == biovision_common::PathPlot::kStartColour;
+  EXPECT_GT(start, 30) << "the start hidden under home";
+  std::ifstream page(dir + "/report.html");
+  std::stringstream text;
+  text << page.rdbuf();
+  EXPECT_NE(text.str().find("where the memory put it (ring)"), std::string::npos) << "path.png's marks explained";
+  for (const char* f : {"path.csv", "mission.json", "report.html", "path.png"})
     std::remove((dir + "/" + f).c_str());
   rmdir(folder);
 }

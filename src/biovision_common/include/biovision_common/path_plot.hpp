@@ -28,7 +28,8 @@ public:
   };
 
   /// A CV_8UC3 image of `size` on white: the grid (when not empty; cell (0, 0)'s corner at `origin` [m],
-  /// the shades of GridView::toImage) and the path (polyline 2 px, start and end as 5 px discs) and marks
+  /// the shades of GridView::toImage) and the path (polyline 2 px, the end a 5 px disc, the start a 9 px ring
+  /// drawn over the marks so a mark at the start, e.g. home, leaves it visible) and marks
   /// (6 px discs or rings, the first 500 labelled), fitted together with a 0.5 m margin below a 24 px title strip. An
   /// empty grid and path give the marks alone (or a blank titled tile). Points not finite or beyond 1e6 m
   /// (and a grid placed there) are left out. A 1 m scale bar bottom left and a legend (path, start, end)

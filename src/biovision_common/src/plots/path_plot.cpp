@@ -14,6 +14,7 @@ const cv::Scalar PathPlot::kPathColour(200, 80, 0), PathPlot::kStartColour(0, 15
 namespace
 {
 const cv::Scalar kBackground(255, 255, 255), kAxis(0, 0, 0);
+constexpr int kStartRing = 9;  // [px] radius: outside a mark's 6 px disc at the same place
 
 // A point to draw: finite and within 1e6 m (beyond, the metres-to-pixels scale underflows).
 bool usable(cv::Point2d p)
@@ -98,9 +99,7 @@ cv::Mat PathPlot::render(const GridView& grid, cv::Point2d origin, const std::ve
   }
   if (!line.empty())
   {
-    cv::circle(image, line.front(), 5, kStartColour, cv::FILLED, cv::LINE_8);
     cv::circle(image, line.back(), 5, kEndColour, cv::FILLED, cv::LINE_8);
-    disc(line.front(), 5);
     disc(line.back(), 5);
   }
   // Every mark first, then the labels around them.
@@ -113,6 +112,12 @@ cv::Mat PathPlot::render(const GridView& grid, cv::Point2d origin, const std::ve
       disc(p, 6);
       shown.emplace_back(p, &m);
     }
+  // The start as a ring around whatever mark is there: a mission starts at home, whose disc hid a start disc.
+  if (!line.empty())
+  {
+    cv::circle(image, line.front(), kStartRing, kStartColour, 2, cv::LINE_8);
+    disc(line.front(), kStartRing);
+  }
   // 1 m scale bar, bottom left.
   const cv::Point bar0(10, size.height - 12), bar1(10 + int(std::lround(scale)), size.height - 12);
   cv::line(image, bar0, bar1, kAxis, 2);
@@ -124,10 +129,17 @@ cv::Mat PathPlot::render(const GridView& grid, cv::Point2d origin, const std::ve
   {
     const char* name;
     cv::Scalar colour;
-    bool stroke;  // the path's stroke, else a disc
-    int width;    // of the name [px]
+    enum
+    {
+      kDisc,
+      kRing,
+      kStroke
+    } glyph;
+    int width;  // of the name [px]
   };
-  Entry entries[] = {{"end", kEndColour, false, 0}, {"start", kStartColour, false, 0}, {"path", kPathColour, true, 0}};
+  Entry entries[] = {{"end", kEndColour, Entry::kDisc, 0},
+                     {"start", kStartColour, Entry::kRing, 0},
+                     {"path", kPathColour, Entry::kStroke, 0}};
   int legend_width = 0;
   for (Entry& e : entries)
   {
@@ -142,10 +154,10 @@ cv::Mat PathPlot::render(const GridView& grid, cv::Point2d origin, const std::ve
     {
       const int x = right - e.width, y = size.height - 12;
       cv::putText(image, e.name, {x, size.height - 8}, cv::FONT_HERSHEY_SIMPLEX, 0.4, kAxis, 1, cv::LINE_AA);
-      if (e.stroke)
+      if (e.glyph == Entry::kStroke)
         cv::line(image, {x - 22, y}, {x - 4, y}, e.colour, 2);
       else
-        cv::circle(image, {x - 9, y}, 5, e.colour, cv::FILLED, cv::LINE_8);
+        cv::circle(image, {x - 9, y}, 5, e.colour, e.glyph == Entry::kDisc ? cv::FILLED : 2, cv::LINE_8);
       right -= e.width + 24;
     }
     taken.emplace_back(cv::Point(right, size.height - 20), cv::Point(size.width, size.height));  // no label over it

@@ -21,6 +21,8 @@ class Mission(unittest.TestCase):
         print(f"mission: found {summary['found']}, returned {summary['returned']}, "
               f"collisions {summary['collisions']}: {summary['message']}")
         self.assertTrue(summary["mission_started"], summary)
+        # The mission starts only once the shown target was recognised: those images count as teaching's.
+        self.assertGreaterEqual(summary["recognitions_while_teaching"].get(summary["target"], 0), 1, summary)
         self.assertIsNotNone(summary["sim_duration_s"], summary)  # the action's result, not the director's time-out
         self.assertTrue(summary["message"], summary)
         if summary["success"]:

@@ -239,7 +239,8 @@ cv::Mat ratesChart(const nlohmann::json& report)
     cv::putText(image, name, {8, y + 14}, cv::FONT_HERSHEY_SIMPLEX, 0.4, colours::kAxis, 1, cv::LINE_AA);
     const cv::Scalar colour = messages > 0 ? colours::kSum : colours::kRepulsion;
     cv::rectangle(image, {label_w, y + 3}, {label_w + std::max(bar, 2), y + row_h - 3}, colour, cv::FILLED);
-    cv::putText(image, messages > 0 ? formatNumber(rate, 1) : std::string("silent"),
+    // Below 1 Hz with two decimals: a 0.15 Hz goal read "0.1" beside the table's 0.15.
+    cv::putText(image, messages > 0 ? formatNumber(rate, std::abs(rate) < 1 ? 2 : 1) : std::string("silent"),
                 {label_w + std::max(bar, 2) + 6, y + 14}, cv::FONT_HERSHEY_SIMPLEX, 0.4, colour, 1, cv::LINE_AA);
     double p50, p95;
     if (latency && latencyOf(t, p50, p95))

@@ -375,6 +375,12 @@ void MemoryNodelet::onMapToOdomTimer(const ros::TimerEvent&)
   geometry_msgs::TransformStamped t;
   // Stamped a little ahead, as localisers do, so lookups at the latest odometry stamp succeed.
   t.header.stamp = ros::Time::now() + ros::Duration(1.0 / settings_.map_to_odom_rate);
+  // A timer on sim time catches up on missed periods with the clock standing still: the same stamp again is
+  // dropped by every listener with a TF_REPEATED_DATA warning (11 in a demo's start-up). An earlier stamp (the
+  // clock jumped back) is sent: listeners start over.
+  if (t.header.stamp == map_to_odom_stamp_)
+    return;
+  map_to_odom_stamp_ = t.header.stamp;
   t.header.frame_id = settings_.map_frame;
   t.child_frame_id = settings_.odom_frame;
   t.transform.translation.x = m.x;

@@ -111,6 +111,7 @@ private:
   ros::ServiceServer list_srv_, query_srv_, forget_srv_;
   ros::WallTimer timer_;
   ros::Timer map_to_odom_timer_;
+  ros::Time map_to_odom_stamp_;  // of the last map -> odom sent (the timer's thread only)
   biovision_ros_common::NodeletDiagnostics diagnostics_;
 };
 }  // namespace biovision_memory

@@ -323,7 +323,13 @@ std::vector<std::string> RunReport::write() const
   {
     const bool ok = report.value("ok", false);
     page << "<p class=\"" << (ok ? "" : "bad") << "\">Topics and tf: <b>" << (ok ? "OK" : "FAILED") << "</b> (listened "
-         << formatNumber(report.value("listened_s", 0.0), 1) << " s)</p>\n";
+         << formatNumber(report.value("listened_s", 0.0), 1) << " s)";
+    // topic_report's window that never opened (its start topic sent nothing): say so, not just "FAILED".
+    const auto window = report.find("window");
+    if (window != report.end() && window->is_object() && window->contains("problem") &&
+        (*window)["problem"].is_string())
+      page << ": " << html((*window)["problem"].get<std::string>());
+    page << "</p>\n";
   }
   if (have_mission)
   {

@@ -523,6 +523,20 @@ TEST(RunReport, WritesPicturesAndASelfContainedPage)
   text3 << page3.rdbuf();
   EXPECT_NE(text3.str().find("-5.0 / 40.0"), std::string::npos);
   EXPECT_FALSE(cv::imread(dir + "/rates.png").empty());
+  // topic_report's window that never opened: the page names why the run FAILED; a malformed window is ignored.
+  std::ofstream(dir + "/report.json") << R"({"title": "t", "ok": false, "listened_s": 30, "window": {"opened": false, )"
+                                      << R"("problem": "the listening window never opened: goal <sent> nothing"}, )"
+                                      << R"("topics": {"goal": {"messages": 0, "rate_hz": 0}}})";
+  RunReport(dir).write();
+  std::ifstream page4(dir + "/report.html");
+  std::stringstream text4;
+  text4 << page4.rdbuf();
+  EXPECT_NE(
+      text4.str().find("FAILED</b> (listened 30.0 s): the listening window never opened: goal &lt;sent&gt; nothing"),
+      std::string::npos)
+      << text4.str().substr(0, 1200);
+  std::ofstream(dir + "/report.json") << R"({"title": "t", "ok": false, "window": {"problem": 3}, "topics": {}})";
+  EXPECT_NO_THROW(RunReport(dir).write());
   for (const char* f : {"pan.csv", "fixations.json", "report.json", "report.html", "pan.png", "rates.png"})
     std::remove((dir + "/" + f).c_str());
   rmdir(folder);

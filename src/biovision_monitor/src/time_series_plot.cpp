@@ -50,8 +50,13 @@ cv::Mat TimeSeriesPlot::render(const std::vector<Series>& series, const std::vec
   size.width = std::max(size.width, 160);
   size.height = std::max(size.height, 120);
   cv::Mat image(size, CV_8UC3, colours::kBackground);
+  constexpr int kLabelRows = 4, kLabelRowHeight = 10;
+  constexpr double kLabelFont = 0.3;
   Axes axes;
-  axes.area = cv::Rect(48, 24, size.width - 48 - 10, size.height - 24 - 34);
+  // Marks' labels get a band of their own between the title and the plot: inside it they hid the curves.
+  const int band = marks.empty() ? 0 : kLabelRows * kLabelRowHeight;
+  axes.area = cv::Rect(48, 24 + band, size.width - 48 - 10, std::max(20, size.height - 24 - band - 34));
+  axes.label_band = cv::Rect(axes.area.x, axes.area.y - band, axes.area.width, band);
   bool any = false;
   double t0 = INFINITY, t1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
   for (const Series& s : series)
@@ -77,8 +82,6 @@ cv::Mat TimeSeriesPlot::render(const std::vector<Series>& series, const std::vec
   label(formatNumber(axes.t0, 1) + " s", {axes.area.x, axes.area.br().y + 14});
   label(formatNumber(axes.t1, 1) + " s", {axes.area.br().x - 50, axes.area.br().y + 14});
   cv::putText(image, title, {axes.area.x, 16}, cv::FONT_HERSHEY_SIMPLEX, 0.45, colours::kAxis, 1, cv::LINE_AA);
-  constexpr int kLabelRows = 4;
-  constexpr double kLabelFont = 0.3;
   std::vector<cv::Range> spans;
   std::vector<const Mark*> shown;
   for (const Mark& m : marks)
@@ -86,7 +89,7 @@ cv::Mat TimeSeriesPlot::render(const std::vector<Series>& series, const std::vec
     if (!std::isfinite(m.t) || m.t < axes.t0 || m.t > axes.t1)
       continue;
     const int x = axes.column(m.t);
-    for (int y = axes.area.y; y < axes.area.br().y; y += 6)
+    for (int y = axes.label_band.y; y < axes.area.br().y; y += 6)
       cv::line(image, {x, y}, {x, std::min(y + 3, axes.area.br().y - 1)}, colours::kAttraction, 1);
     int baseline = 0;
     const int width = cv::getTextSize(m.label, cv::FONT_HERSHEY_SIMPLEX, kLabelFont, 1, &baseline).width;
@@ -99,7 +102,7 @@ cv::Mat TimeSeriesPlot::render(const std::vector<Series>& series, const std::vec
     if (rows[i] >= 0)
     {
       // On the background's colour: a neighbouring mark's dashed line would otherwise run through the letters.
-      const cv::Point at(spans[i].start, axes.area.y + 10 + 10 * rows[i]);
+      const cv::Point at(spans[i].start, axes.label_band.y + kLabelRowHeight - 1 + kLabelRowHeight * rows[i]);
       cv::rectangle(image, {at.x - 1, at.y - 8}, {spans[i].end, at.y + 1}, colours::kBackground, cv::FILLED);
       cv::putText(image, shown[i]->label, at, cv::FONT_HERSHEY_SIMPLEX, kLabelFont, colours::kAttraction, 1,
                   cv::LINE_AA);

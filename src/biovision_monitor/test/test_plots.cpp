@@ -396,7 +396,10 @@ TEST(TimeSeriesPlot, MarksSitAtTheirTimes)
 {
   TimeSeriesPlot::Axes axes;
   const cv::Mat image = TimeSeriesPlot().render({{0, -10}, {10, 30}}, {{5.0, "mug"}}, "pan", cv::Size(400, 200), &axes);
-  EXPECT_TRUE(near(image.at<cv::Vec3b>(axes.area.y + 1, axes.column(5.0)), colours::kAttraction));
+  int dashes = 0;  // the dashed line's pixels in the plot's top 12 rows (two dash periods)
+  for (int y = axes.area.y + 1; y < axes.area.y + 13; ++y)
+    dashes += near(image.at<cv::Vec3b>(y, axes.column(5.0)), colours::kAttraction);
+  EXPECT_GE(dashes, 6);
   EXPECT_EQ(axes.column(0.0), axes.area.x);
 }
 
@@ -411,12 +414,17 @@ TEST(TimeSeriesPlot, MarkLabelsTakeTheFirstFreeRowAndAreLeftOutWhenTheRowsAreFul
   EXPECT_TRUE(TimeSeriesPlot::labelRows({}, 4).empty());
   EXPECT_EQ(TimeSeriesPlot::labelRows(spans, 0), (std::vector<int>(5, -1)));
 
-  // A mark at the right edge has its label left of its line, inside the plot.
+  // A mark at the right edge has its label left of its line, inside the picture, in the band above the plot.
   TimeSeriesPlot::Axes axes;
   const cv::Mat image = TimeSeriesPlot().render({{0, -10}, {10, 30}}, {{10.0, "target_box"}}, "pan", cv::Size(400, 200),
                                                 &axes);
   const int x = axes.column(10.0);
-  cv::Mat left = image(cv::Rect(x - 60, axes.area.y + 1, 56, 10)), right = image(cv::Rect(x + 2, 0, 400 - x - 2, 200));
+  ASSERT_EQ(axes.label_band.br().y, axes.area.y);
+  ASSERT_GE(axes.label_band.height, 10);
+  cv::Mat left = image(cv::Rect(x - 60, axes.label_band.y, 56, 10)),
+          right = image(cv::Rect(x + 2, 0, 400 - x - 2, 200));
+  // Not over the curves: nothing of the label inside the plot area (it sat there, over the pan curve).
+  cv::Mat in_plot = image(cv::Rect(x - 60, axes.area.y + 1, 56, axes.area.height - 2));
   auto green = [](const cv::Mat& m) {
     int n = 0;
     for (int r = 0; r < m.rows; ++r)
@@ -426,6 +434,13 @@ TEST(TimeSeriesPlot, MarkLabelsTakeTheFirstFreeRowAndAreLeftOutWhenTheRowsAreFul
   };
   EXPECT_GT(green(left), 10) << "the label is drawn left of the line";
   EXPECT_EQ(green(right), 0) << "nothing right of the line";
+  EXPECT_EQ(green(in_plot), 0) << "the label is not drawn over the plot";
+  // Without marks the plot keeps the band's height.
+  TimeSeriesPlot::Axes bare;
+  TimeSeriesPlot().render({{0, -10}, {10, 30}}, {}, "pan", cv::Size(400, 200), &bare);
+  EXPECT_TRUE(bare.label_band.empty());
+  EXPECT_EQ(bare.area.y, 24);
+  EXPECT_GT(bare.area.height, axes.area.height);
 }
 
 TEST(RunReport, WritesPicturesAndASelfContainedPage)

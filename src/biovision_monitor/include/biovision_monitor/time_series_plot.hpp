@@ -12,8 +12,9 @@ namespace biovision_monitor
 class TimeSeriesPlot
 {
 public:
-  /// An event at time t [s]: a vertical dashed line and its label (in one of 4 rows at the top, left of
-  /// the line near the right edge, left out where the rows are full: labelRows()).
+  /// An event at time t [s]: a vertical dashed line and its label (in one of 4 rows of a band above the
+  /// plot, clear of the curves; left of the line near the right edge, left out where the rows are full:
+  /// labelRows()).
   struct Mark
   {
     double t;
@@ -23,6 +24,7 @@ public:
   struct Axes
   {
     cv::Rect area;
+    cv::Rect label_band;  ///< the marks' labels, above `area` (empty without marks)
     double t0 = 0, t1 = 1, y0 = -1, y1 = 1;
     int column(double t) const;
     int row(double y) const;

@@ -325,7 +325,16 @@ TEST(ShortTermMemoryOdometry, TranslationChangesDistanceAndBearing)
   ASSERT_TRUE(s[6].obstacle);
   EXPECT_NEAR(s[6].distance, std::hypot(0.5, 0.5), 1e-9);
   EXPECT_NEAR(s[6].offset, std::hypot(0.5, 0.5) * std::sin(30 * kDeg), 1e-9) << "at its sector's near edge";
-  EXPECT_NEAR(s[6].confidence, 1.0 - 1.5 / 2.0, 1e-9);  // travelled 1.5 of the 2 m horizon
+  // Travelled 1.5 m of horizon_distance, seen 1 s ago of obstacle_horizon_time: the lower share left.
+  const auto& p = stm.parameters();
+  EXPECT_NEAR(s[6].confidence, std::min(1.0 - 1.5 / p.horizon_distance, 1.0 - 1.0 / p.obstacle_horizon_time), 1e-9);
+  // Back towards it (it stays ahead, in the field): kept just short of horizon_distance travelled, gone past it.
+  const double back = p.horizon_distance - 1.5;
+  stm.moveTo(Pose2D{2.5 - (back - 0.01), 1.0, 0.0}, 1.5);
+  EXPECT_TRUE(stm.sectors()[5].obstacle || stm.sectors()[4].obstacle);
+  stm.moveTo(Pose2D{2.5 - (back + 0.01), 1.0, 0.0}, 1.6);
+  for (const auto& sec : stm.sectors())
+    EXPECT_FALSE(sec.obstacle);
 }
 
 TEST(ShortTermMemoryOdometry, RotateAndTranslateTogether)

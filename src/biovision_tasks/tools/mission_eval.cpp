@@ -339,8 +339,10 @@ int main(int argc, char** argv)
       "corridor's margin alone slows it instead of stopping it unless it turns that way; 0 / 0.05 / 0.1 m/s: "
       "completed 1185 / 1194 / 1191, collisions 4 / 5 / 5), trapped_timeout on the corridor world's tune seeds "
       "101-500 (20 / 30 / 40 / 50 / 60 s: completed 318 / 344 / 349 / 351 / 343 of 400, collisions 32 / 31 / 31 "
-      "/ 31 / 31; 101-1300 of these rooms: 1196 completed, 5 collisions at 20, 30 and 40 s); nothing on these "
-      "seeds. "
+      "/ 31 / 31; 101-1300 of these rooms: 1196 completed, 5 collisions at 20, 30 and 40 s), the STM's "
+      "horizon_distance on the corridor's 101-500 (2 / 2.5 / 3 / 4 m: completed 349 / 349 / 353 / 353, collisions "
+      "31 / 27 / 23 / 23; these rooms' 101-1300 at 3 m: 1196 -> 1197 completed, 5 -> 4 collisions); nothing on "
+      "these seeds. "
       "Each trial's "
       "collision_details say what was hit, "
       "during which task, where on the base's rim and what the sectors held there. Once the "
@@ -355,8 +357,9 @@ int main(int argc, char** argv)
         "object stood, the start at the origin facing +x (as make demo), jittered per seed; once the target is "
         "found one new 0.45 m box (mission.launch's new_crate) is put by mission_director's rule: halfway home on "
         "the straight line, else up to 0.4 of the way either side, else the point of the path driven nearest "
-        "halfway, 1 m clear of the robot, home and every other footprint. One parameter was chosen on this world "
-        "with this tool, on its tune seeds 101-500 and never on the report seeds 1-100: trapped_timeout (below). "
+        "halfway, 1 m clear of the robot, home and every other footprint. Two parameters were chosen on this world "
+        "with this tool, on its tune seeds 101-500 and never on the report seeds 1-100: trapped_timeout and the "
+        "STM's horizon_distance (below). "
         "The rest as the generated rooms' notes: " +
         document["notes"].get<std::string>();
   std::cout << document.dump(2) << "\n";

@@ -1,8 +1,4 @@
 #include <gtest/gtest.h>
-#include <yaml-cpp/yaml.h>
-
-#include <cmath>
-#include <set>
 
 #include "biovision_ros_common/parameter_file_check.hpp"
 #include "pioneer_driver/pioneer_parameters.hpp"
@@ -10,21 +6,10 @@
 
 TEST(PioneerParameterFile, TheYamlEqualsTheStructDefaultsKeyForKey)
 {
-  const YAML::Node yaml = YAML::LoadFile(std::string(BIOVISION_CONFIG_DIR) + "/pioneer_driver.yaml");
-  pioneer_driver::PioneerParameters defaults;
-  std::set<std::string> names;
-  pioneer_driver::visitParameters(defaults, [&](const std::string& name, auto& value) {
-    names.insert(name);
-    ASSERT_TRUE(yaml[name]) << name << " missing from the YAML";
-    using T = std::decay_t<decltype(value)>;
-    const T got = yaml[name].as<T>();
-    if constexpr (std::is_floating_point_v<T>)
-      EXPECT_NEAR(got, value, 1e-12) << name;
-    else
-      EXPECT_EQ(got, value) << name;
-  });
-  for (const auto& kv : yaml)
-    EXPECT_TRUE(names.count(kv.first.as<std::string>())) << kv.first.as<std::string>() << " is not a parameter";
+  const auto problems = biovision_ros_common::yamlStructMismatches<pioneer_driver::PioneerParameters>(
+      std::string(BIOVISION_CONFIG_DIR) + "/pioneer_driver.yaml",
+      [](auto& parameters, auto&& read) { pioneer_driver::visitParameters(parameters, read); });
+  EXPECT_TRUE(problems.empty()) << biovision_ros_common::joinLines(problems);
 }
 
 TEST(PioneerParameterFile, TheCfgDefaultsEqualTheYamlAndTheStruct)

@@ -59,39 +59,37 @@ TEST(ClosedLoop, HeadExploresTheTableTop)
   std::deque<std::pair<double, double>> window;  // (t, pan) over the last second
   ros::Subscriber js_sub = nh.subscribe<sensor_msgs::JointState>(
       "joint_states", 100, [&](const sensor_msgs::JointStateConstPtr& m) {
-        for (size_t i = 0; i < m->name.size(); ++i)
+        const double pan = biovision_ros_common::jointPosition(m, "head_pan_joint");
+        if (std::isnan(pan))
+          return;
+        const double t = m->header.stamp.toSec();
+        std::lock_guard<std::mutex> lock(mutex);
+        max_pan = std::max(max_pan, pan);
+        min_pan = std::min(min_pan, pan);
+        left |= pan > 0.17;
+        right |= pan < -0.17;
+        window.emplace_back(t, pan);
+        while (!window.empty() && window.front().first < t - 1.0)
+          window.pop_front();
+        double lo = 10, hi = -10, sum = 0;
+        for (const auto& w : window)
         {
-          if (m->name[i] != "head_pan_joint")
-            continue;
-          const double pan = m->position[i], t = m->header.stamp.toSec();
-          std::lock_guard<std::mutex> lock(mutex);
-          max_pan = std::max(max_pan, pan);
-          min_pan = std::min(min_pan, pan);
-          left |= pan > 0.17;
-          right |= pan < -0.17;
-          window.emplace_back(t, pan);
-          while (!window.empty() && window.front().first < t - 1.0)
-            window.pop_front();
-          double lo = 10, hi = -10, sum = 0;
-          for (const auto& w : window)
-          {
-            lo = std::min(lo, w.second);
-            hi = std::max(hi, w.second);
-            sum += w.second;
-          }
-          // A fixation: the head stays within +-5 deg for a second.
-          if (t - window.front().first >= 0.95 && hi - lo < 0.17 && t - last_fixation_t > 1.0)
-          {
-            const double at = sum / window.size();
-            const Object* best = nullptr;
-            for (const auto& o : objects)
-              if (!best || std::abs(o.direction - at) < std::abs(best->direction - at))
-                best = &o;
-            // The object the camera points at, if within 12 deg.
-            if (best && std::abs(best->direction - at) < 0.21 && (fixations.empty() || fixations.back() != best->label))
-              fixations.push_back(best->label);
-            last_fixation_t = t;
-          }
+          lo = std::min(lo, w.second);
+          hi = std::max(hi, w.second);
+          sum += w.second;
+        }
+        // A fixation: the head stays within +-5 deg for a second.
+        if (t - window.front().first >= 0.95 && hi - lo < 0.17 && t - last_fixation_t > 1.0)
+        {
+          const double at = sum / window.size();
+          const Object* best = nullptr;
+          for (const auto& o : objects)
+            if (!best || std::abs(o.direction - at) < std::abs(best->direction - at))
+              best = &o;
+          // The object the camera points at, if within 12 deg.
+          if (best && std::abs(best->direction - at) < 0.21 && (fixations.empty() || fixations.back() != best->label))
+            fixations.push_back(best->label);
+          last_fixation_t = t;
         }
       });
 

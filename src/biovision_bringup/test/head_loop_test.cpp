@@ -12,20 +12,9 @@
 
 #include "biovision_ros_common/rostest_helpers.hpp"
 
+using biovision_ros_common::jointPosition;
 using biovision_ros_common::TopicProbe;
 using biovision_ros_common::waitFor;
-
-namespace
-{
-double joint(const sensor_msgs::JointStateConstPtr& js, const std::string& name)
-{
-  if (js)
-    for (size_t i = 0; i < js->name.size(); ++i)
-      if (js->name[i] == name)
-        return js->position[i];
-  return NAN;
-}
-}  // namespace
 
 TEST(HeadLoop, TheHeadControllerTurnsTheEmulatedServosTowardsASalientObject)
 {
@@ -40,7 +29,7 @@ TEST(HeadLoop, TheHeadControllerTurnsTheEmulatedServosTowardsASalientObject)
   const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(8.0);
   while (ros::WallTime::now() < end)
   {
-    const double pan = joint(joints.last(), "head_pan_joint");
+    const double pan = jointPosition(joints.last(), "head_pan_joint");
     biovision_msgs::SalientRegionArray msg;
     msg.header.stamp = ros::Time::now();
     if (std::abs(object - pan) < 0.37)  // the object is seen while it is in the field of view

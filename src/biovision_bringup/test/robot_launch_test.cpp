@@ -14,20 +14,9 @@
 
 #include "biovision_ros_common/rostest_helpers.hpp"
 
+using biovision_ros_common::jointPosition;
 using biovision_ros_common::TopicProbe;
 using biovision_ros_common::waitFor;
-
-namespace
-{
-double joint(const sensor_msgs::JointStateConstPtr& js, const std::string& name)
-{
-  if (js)
-    for (size_t i = 0; i < js->name.size(); ++i)
-      if (js->name[i] == name)
-        return js->position[i];
-  return NAN;
-}
-}  // namespace
 
 TEST(RobotLaunch, TheDriversPublishTheSimulatorsTopicsAndTakeItsCommands)
 {
@@ -46,8 +35,8 @@ TEST(RobotLaunch, TheDriversPublishTheSimulatorsTopicsAndTakeItsCommands)
   std_msgs::Float64 angle;
   angle.data = 0.5;
   pan.publish(angle);
-  EXPECT_TRUE(waitFor([&] { return std::abs(joint(joints.last(), "head_pan_joint") - 0.5) < 0.01; }, 5.0))
-      << joint(joints.last(), "head_pan_joint");
+  EXPECT_TRUE(waitFor([&] { return std::abs(jointPosition(joints.last(), "head_pan_joint") - 0.5) < 0.01; }, 5.0))
+      << jointPosition(joints.last(), "head_pan_joint");
 
   geometry_msgs::Twist t;
   t.linear.x = 0.2;

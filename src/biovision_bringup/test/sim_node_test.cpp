@@ -116,9 +116,9 @@ TEST(Sim, TopicsRatesTfHeadAndBase)
   subs.push_back(
       nh.subscribe<sensor_msgs::JointState>("joint_states", 50, [&](const sensor_msgs::JointStateConstPtr& m) {
         counters.at("joints").tick(m->header.stamp);
-        for (size_t i = 0; i < m->name.size(); ++i)
-          if (m->name[i] == "head_pan_joint")
-            pan = m->position[i];
+        const double p = biovision_ros_common::jointPosition(m, "head_pan_joint");
+        if (!std::isnan(p))
+          pan = p;
       }));
   subs.push_back(nh.subscribe<nav_msgs::Odometry>("odom", 50, [&](const nav_msgs::OdometryConstPtr& m) {
     counters.at("odom").tick(m->header.stamp);

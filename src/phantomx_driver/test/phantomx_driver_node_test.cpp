@@ -13,6 +13,7 @@
 #include "phantomx_driver/ax12_joint.hpp"
 
 using biovision_ros_common::DiagnosticsWatch;
+using biovision_ros_common::jointPosition;
 using biovision_ros_common::TopicProbe;
 using biovision_ros_common::waitFor;
 using phantomx_driver::Ax12Joint;
@@ -20,16 +21,6 @@ using phantomx_driver::Ax12Joint;
 namespace
 {
 std::unique_ptr<phantomx_driver::Ax12BusEmulator> g_servos;
-
-double jointPosition(const sensor_msgs::JointStateConstPtr& js, const std::string& name)
-{
-  if (!js)
-    return NAN;
-  for (size_t i = 0; i < js->name.size(); ++i)
-    if (js->name[i] == name)
-      return js->position[i];
-  return NAN;
-}
 
 class PhantomXDriverNode : public ::testing::Test
 {

@@ -5,6 +5,7 @@
 // and child processes.
 
 #include <atomic>
+#include <cmath>
 #include <condition_variable>
 #include <csignal>
 #include <cstdlib>
@@ -21,6 +22,7 @@
 #include <gtest/gtest.h>
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
+#include <sensor_msgs/JointState.h>
 
 namespace biovision_ros_common
 {
@@ -65,6 +67,17 @@ private:
   std::unique_ptr<ros::NodeHandle> nh_;
   std::unique_ptr<ros::AsyncSpinner> spinner_;
 };
+
+/// The position [rad or m] of joint `name` in `js`; NaN when there is no message, the joint is not named
+/// or it has no position.
+inline double jointPosition(const sensor_msgs::JointStateConstPtr& js, const std::string& name)
+{
+  if (js)
+    for (size_t i = 0; i < js->name.size() && i < js->position.size(); ++i)
+      if (js->name[i] == name)
+        return js->position[i];
+  return NAN;
+}
 
 /// Polls `condition` every 20 ms for up to `seconds` of wall time; true as soon as it holds.
 template <typename Condition>

@@ -329,6 +329,8 @@ std::vector<std::string> RunReport::write() const
     if (window != report.end() && window->is_object() && window->contains("problem") &&
         (*window)["problem"].is_string())
       page << ": " << html((*window)["problem"].get<std::string>());
+    else if (window != report.end() && window->is_object() && window->value("interrupted", false) == true)
+      page << ": shut down before its window ended";
     page << "</p>\n";
   }
   if (have_mission)
@@ -382,6 +384,30 @@ std::vector<std::string> RunReport::write() const
            << formatNumber(t.value("rate_hz", 0.0), 2) << "</td><td>" << latency << "</td></tr>\n";
     }
     page << "</table>\n";
+    // The tf pairs topic_report checked: which failed and why (the verdict alone did not say).
+    const auto frames = report.find("frames");
+    if (frames != report.end() && frames->is_array() && !frames->empty())
+    {
+      page << "<h2>tf</h2>\n<table><tr><th>parent</th><th>child</th><th>resolves</th><th>translation [m] or why "
+              "not</th></tr>\n";
+      for (const auto& f : *frames)
+      {
+        if (!f.is_object())
+          continue;
+        const bool resolved = f.value("ok", false);
+        std::string detail;
+        const auto translation = f.find("translation");
+        if (resolved && translation != f.end() && translation->is_array())
+          for (const auto& v : *translation)
+            detail += (detail.empty() ? "" : ", ") + (v.is_number() ? formatNumber(v.get<double>(), 3) : "?");
+        else if (f.contains("error") && f["error"].is_string())
+          detail = f["error"].get<std::string>();
+        page << "<tr" << (resolved ? "" : " class=\"bad\"") << "><td><code>" << html(f.value("parent", std::string()))
+             << "</code></td><td><code>" << html(f.value("child", std::string())) << "</code></td><td>"
+             << (resolved ? "yes" : "NO") << "</td><td>" << html(detail) << "</td></tr>\n";
+      }
+      page << "</table>\n";
+    }
   }
   if (have_fix)
   {

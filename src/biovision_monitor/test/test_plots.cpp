@@ -552,6 +552,24 @@ TEST(RunReport, WritesPicturesAndASelfContainedPage)
       << text4.str().substr(0, 1200);
   std::ofstream(dir + "/report.json") << R"({"title": "t", "ok": false, "window": {"problem": 3}, "topics": {}})";
   EXPECT_NO_THROW(RunReport(dir).write());
+  // The tf pairs: each with its translation or why it failed; a window shut down early says so.
+  std::ofstream(dir + "/report.json")
+      << R"({"title": "t", "ok": false, "listened_s": 4, "window": {"opened": true, "interrupted": true}, )"
+      << R"("topics": {}, "frames": [{"parent": "map", "child": "base_link", "ok": true, "translation": [1.5, -2, 0]}, )"
+      << R"({"parent": "odom", "child": "cam", "ok": false, "error": "\"cam\" does not exist"}, 7]})";
+  RunReport(dir).write();
+  std::ifstream page5(dir + "/report.html");
+  std::stringstream text5;
+  text5 << page5.rdbuf();
+  EXPECT_NE(text5.str().find("(listened 4.0 s): shut down before its window ended"), std::string::npos);
+  EXPECT_NE(text5.str().find("<td><code>map</code></td><td><code>base_link</code></td><td>yes</td><td>1.500, "
+                             "-2.000, 0.000</td>"),
+            std::string::npos)
+      << text5.str();
+  EXPECT_NE(text5.str().find("<tr class=\"bad\"><td><code>odom</code></td><td><code>cam</code></td><td>NO</td><td>"
+                             "\"cam\" does not exist</td>"),
+            std::string::npos)
+      << text5.str();
   for (const char* f : {"pan.csv", "fixations.json", "report.json", "report.html", "pan.png", "rates.png"})
     std::remove((dir + "/" + f).c_str());
   rmdir(folder);

@@ -324,13 +324,17 @@ std::vector<std::string> RunReport::write() const
     const bool ok = report.value("ok", false);
     page << "<p class=\"" << (ok ? "" : "bad") << "\">Topics and tf: <b>" << (ok ? "OK" : "FAILED") << "</b> (listened "
          << formatNumber(report.value("listened_s", 0.0), 1) << " s)";
-    // topic_report's window that never opened (its start topic sent nothing): say so, not just "FAILED".
+    // topic_report's window that never opened (its start topic sent nothing) or was cut short: say so, not
+    // just "FAILED" or a plain listening time. A field of another type is ignored.
     const auto window = report.find("window");
-    if (window != report.end() && window->is_object() && window->contains("problem") &&
-        (*window)["problem"].is_string())
-      page << ": " << html((*window)["problem"].get<std::string>());
-    else if (window != report.end() && window->is_object() && window->value("interrupted", false) == true)
-      page << ": shut down before its window ended";
+    if (window != report.end() && window->is_object())
+    {
+      const auto problem = window->find("problem"), interrupted = window->find("interrupted");
+      if (problem != window->end() && problem->is_string())
+        page << ": " << html(problem->get<std::string>());
+      else if (interrupted != window->end() && interrupted->is_boolean() && interrupted->get<bool>())
+        page << ": shut down before its window ended";
+    }
     page << "</p>\n";
   }
   if (have_mission)

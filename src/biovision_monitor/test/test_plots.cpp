@@ -552,6 +552,8 @@ TEST(RunReport, WritesPicturesAndASelfContainedPage)
       << text4.str().substr(0, 1200);
   std::ofstream(dir + "/report.json") << R"({"title": "t", "ok": false, "window": {"problem": 3}, "topics": {}})";
   EXPECT_NO_THROW(RunReport(dir).write());
+  std::ofstream(dir + "/report.json") << R"({"title": "t", "ok": false, "window": {"interrupted": 3}, "topics": {}})";
+  EXPECT_NO_THROW(RunReport(dir).write());
   // The tf pairs: each with its translation or why it failed; a window shut down early says so.
   std::ofstream(dir + "/report.json")
       << R"({"title": "t", "ok": false, "listened_s": 4, "window": {"opened": true, "interrupted": true}, )"

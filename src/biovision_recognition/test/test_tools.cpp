@@ -75,3 +75,41 @@ TEST(SyntheticViewpoints, TheHomographyMapsImageContentToWhereTheWarpPutsIt)
     EXPECT_GT(cv::norm(cv::Matx33d::eye() - h), 1e-3) << w.name;
   }
 }
+
+TEST(SyntheticPair, RecordsTheViewChangeItMade)
+{
+  // The recorded tilt and scale are the singular values of the homography's Jacobian at the image centre
+  // (the perspective term vanishes there), so an evaluation pooling by them pools what was really done.
+  cv::Mat image(120, 160, CV_8UC3);
+  cv::randu(image, cv::Scalar::all(0), cv::Scalar::all(255));
+  std::mt19937 rng(7);
+  int blurred = 0;
+  for (int k = 0; k < 20; ++k)
+  {
+    const CorrespondencePair p = syntheticPair(image, "random", 4.0, true, rng);
+    ASSERT_TRUE(p.synthetic.has_value());
+    const cv::Matx33d h(p.homography.ptr<double>());
+    const cv::Point2d c((image.cols - 1) / 2.0, (image.rows - 1) / 2.0);
+    const double w = h(2, 0) * c.x + h(2, 1) * c.y + h(2, 2);
+    const cv::Vec2d y((h(0, 0) * c.x + h(0, 1) * c.y + h(0, 2)) / w, (h(1, 0) * c.x + h(1, 1) * c.y + h(1, 2)) / w);
+    const cv::Matx22d jacobian((h(0, 0) - y[0] * h(2, 0)) / w, (h(0, 1) - y[0] * h(2, 1)) / w,
+                               (h(1, 0) - y[1] * h(2, 0)) / w, (h(1, 1) - y[1] * h(2, 1)) / w);
+    cv::Mat singular;
+    cv::SVD::compute(cv::Mat(jacobian), singular, cv::SVD::NO_UV);
+    const double s1 = singular.at<double>(0), s2 = singular.at<double>(1);
+    EXPECT_NEAR(p.synthetic->tilt, s1 / s2, 1e-6);
+    EXPECT_NEAR(p.synthetic->scale, s1, 1e-6);
+    EXPECT_GE(p.synthetic->tilt, 1.0);
+    EXPECT_LE(p.synthetic->tilt, 4.0);
+    if (p.synthetic->blur_sigma > 0)
+    {
+      ++blurred;
+      EXPECT_GE(p.synthetic->blur_sigma, 0.5);
+      EXPECT_LE(p.synthetic->blur_sigma, 2.0);
+    }
+  }
+  EXPECT_GT(blurred, 0);
+  EXPECT_LT(blurred, 20);
+  std::mt19937 again(7);
+  EXPECT_FALSE(syntheticPair(image, "plain", 4.0, false, again).synthetic->blur_sigma > 0);
+}

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -26,12 +27,22 @@ using biovision_common::MiddleburyDataset;
 
 namespace biovision_recognition
 {
+/// What syntheticPair() did to make view B (drawn per pair), so that an evaluation can pool by condition.
+struct SyntheticViewChange
+{
+  double tilt = 1.0;        // foreshortening ratio of the affine part (1: none; the ASIFT range is 1..4)
+  double scale = 1.0;       // uniform magnification
+  double blur_sigma = 0.0;  // Gaussian blur of view B [px]; 0: not blurred
+  bool noise = false;       // Gaussian noise (sigma 2 grey levels) added to view B
+};
+
 struct CorrespondencePair
 {
   std::string name;
-  cv::Mat a, b;              // 8-bit BGR
-  cv::Mat homography;        // 3x3 CV_64F, A -> B; empty for stereo
-  cv::Mat disparity, valid;  // stereo ground truth (left = A)
+  cv::Mat a, b;                                  // 8-bit BGR
+  cv::Mat homography;                            // 3x3 CV_64F, A -> B; empty for stereo
+  cv::Mat disparity, valid;                      // stereo ground truth (left = A)
+  std::optional<SyntheticViewChange> synthetic;  // set by syntheticPair() only
 };
 
 /// The descriptor's split by image source (issue #22): Middlebury scenes, image collections' sources
@@ -77,7 +88,7 @@ inline std::vector<CorrespondencePair> loadCorrespondencePairs(const std::string
     for (size_t i = 0; i < scenes.size(); ++i)
       if (inPart(i, part, scenes[i].name))
         pairs.push_back({"stereo/" + scenes[i].name, scenes[i].left, scenes[i].right, cv::Mat(), scenes[i].ground_truth,
-                         scenes[i].nonoccluded});
+                         scenes[i].nonoccluded, std::nullopt});
   }
   if (!sequence_dir.empty())
   {
@@ -226,6 +237,7 @@ inline CorrespondencePair syntheticPair(const cv::Mat& image, const std::string&
                                         bool photometric, std::mt19937& rng)
 {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
+  SyntheticViewChange change;
   const double tilt = std::exp(std::log(max_tilt) * unit(rng)), phi = CV_PI * unit(rng);
   const double scale = std::pow(1.3, 2.0 * unit(rng) - 1.0), psi = (20.0 * unit(rng) - 10.0) * CV_PI / 180.0;
   const cv::Matx22d rot_phi(std::cos(phi), -std::sin(phi), std::sin(phi), std::cos(phi));
@@ -255,6 +267,7 @@ inline CorrespondencePair syntheticPair(const cv::Mat& image, const std::string&
     {
       const double sigma = 0.5 + 1.5 * unit(rng);
       cv::GaussianBlur(warped, warped, cv::Size(), sigma, sigma);
+      change.blur_sigma = sigma;
     }
     if (unit(rng) < 0.5)
     {
@@ -264,6 +277,7 @@ inline CorrespondencePair syntheticPair(const cv::Mat& image, const std::string&
       warped.convertTo(w16, CV_16S);
       w16 += noise;
       w16.convertTo(warped, CV_8U);
+      change.noise = true;
     }
   }
   CorrespondencePair p;
@@ -271,6 +285,9 @@ inline CorrespondencePair syntheticPair(const cv::Mat& image, const std::string&
   p.a = image;
   p.b = warped;
   p.homography = cv::Mat(h).clone();
+  change.tilt = tilt;
+  change.scale = scale;
+  p.synthetic = change;
   return p;
 }
 

@@ -262,7 +262,21 @@ struct Evaluation
 {
   std::map<std::string, Scores> scores;                               // method -> every pair's distances
   std::map<std::string, std::map<std::string, double>> per_pair_fpr;  // image pair -> method -> fpr95
+  std::map<std::string, SyntheticViewChange> view_changes;            // synthetic image pair -> its change
+  std::map<std::string, std::map<std::string, Scores>> by_condition;  // condition -> method -> pooled distances
+  std::map<std::string, int> condition_pairs;                         // condition -> image pairs
 };
+
+/// The conditions a synthetic pair is pooled under, so that the report says where a method wins or loses:
+/// its foreshortening band and whether view B was blurred (the order of the report).
+const std::vector<std::string> kConditions{"tilt < 1.5", "tilt 1.5-2.5", "tilt >= 2.5", "sharp", "blurred"};
+std::vector<std::string> conditionsOf(const SyntheticViewChange& c)
+{
+  return {c.tilt < 1.5   ? kConditions[0]
+          : c.tilt < 2.5 ? kConditions[1]
+                         : kConditions[2],
+          c.blur_sigma > 0 ? kConditions[4] : kConditions[3]};
+}
 
 /// Every method on the same sampled keypoints of every image pair; only pairs every method described count.
 Evaluation evaluate(const Options& o, const Models& ours)
@@ -382,8 +396,21 @@ Evaluation evaluate(const Options& o, const Models& ours)
         local.negative.push_back(distance(d.first, static_cast<int>(i), d.second, static_cast<int>(n + i)));
       }
       per_pair_fpr[pair.name][m] = fpr95(local.positive, local.negative);
+      if (pair.synthetic)
+        for (const std::string& c : conditionsOf(*pair.synthetic))
+        {
+          Scores& pooled = evaluation.by_condition[c][m];
+          pooled.positive.insert(pooled.positive.end(), local.positive.begin(), local.positive.end());
+          pooled.negative.insert(pooled.negative.end(), local.negative.begin(), local.negative.end());
+        }
       s.positive.insert(s.positive.end(), local.positive.begin(), local.positive.end());
       s.negative.insert(s.negative.end(), local.negative.begin(), local.negative.end());
+    }
+    if (pair.synthetic)
+    {
+      evaluation.view_changes[pair.name] = *pair.synthetic;
+      for (const std::string& c : conditionsOf(*pair.synthetic))
+        ++evaluation.condition_pairs[c];
     }
     std::cerr << pair.name << ": " << kept.size() << " of " << n << " pairs described by every method\n";
   }
@@ -439,10 +466,40 @@ nlohmann::ordered_json report(const Options& o, const Evaluation& evaluation)
     std::sort(scenes.begin(), scenes.end());
     results["split"] = descriptorSplit().describe(scenes);
   }
+  if (!evaluation.by_condition.empty())
+  {
+    // Pooled per condition (not the mean of per-pair figures): the same reading as the whole table's.
+    nlohmann::ordered_json& conditions = results["by_condition"] = nlohmann::ordered_json::object();
+    std::cout << "fpr95 pooled by the synthetic pairs' condition:\n";
+    for (const std::string& c : kConditions)
+    {
+      const auto found = evaluation.by_condition.find(c);
+      if (found == evaluation.by_condition.end())
+        continue;
+      nlohmann::ordered_json& row = conditions[c];
+      row["image_pairs"] = evaluation.condition_pairs.at(c);
+      row["keypoint_pairs"] = found->second.begin()->second.positive.size();
+      std::cout << "  " << std::setw(14) << c << " (" << evaluation.condition_pairs.at(c) << " image pairs)";
+      for (const auto& [m, s] : found->second)
+      {
+        row[m] = fpr95(s.positive, s.negative);
+        std::cout << " " << m << " " << row[m].get<double>();
+      }
+      std::cout << "\n";
+    }
+  }
   nlohmann::ordered_json& scenes = results["scenes"] = nlohmann::ordered_json::object();
   for (const auto& [name, fprs] : evaluation.per_pair_fpr)
+  {
     for (const auto& [m, v] : fprs)
       scenes[name][m] = v;
+    const auto change = evaluation.view_changes.find(name);
+    if (change != evaluation.view_changes.end())
+      scenes[name]["view_change"] = {{"tilt", change->second.tilt},
+                                     {"scale", change->second.scale},
+                                     {"blur_sigma", change->second.blur_sigma},
+                                     {"noise", change->second.noise}};
+  }
   // Per image pair: which binary method has the lowest fpr95 (ties: each tied method counts).
   std::map<std::string, int> lowest;
   for (const auto& [name, fprs] : evaluation.per_pair_fpr)

@@ -109,9 +109,20 @@ void ArcosEmulator::reply(const std::vector<uint8_t>& data)
     pty_->write(encodeArcosPacket(data));
 }
 
+void ArcosEmulator::dropNext(uint8_t command, int n)
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  drop_[command] = n;
+}
+
 void ArcosEmulator::handle(const std::vector<uint8_t>& data, double now)
 {
   const uint8_t cmd = data[0];
+  if (drop_[cmd] > 0)
+  {
+    drop_[cmd]--;
+    return;
+  }
   counts_[cmd]++;
   auto intArg = [&]() -> int {
     if (data.size() < 4)

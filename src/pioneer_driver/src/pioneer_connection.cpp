@@ -99,6 +99,11 @@ void PioneerConnection::connect(double now)
   if (reply.empty() || reply[0] != kSync2)
     throw std::runtime_error("no SYNC2 reply from " + p_.port);
   const auto names = syncReplyStrings(reply);
+  // A real controller answers with its name, class and subclass; a port that echoes what it is sent (a
+  // loopback plug, a terminal) returns the bare SYNC2 and passed the two echo steps above.
+  if (names.size() < 3 || names[0].empty())
+    throw std::runtime_error("the SYNC2 reply from " + p_.port +
+                             " carries no robot name, class and subclass (a port echoing the driver, not a robot?)");
   status_.robot_name = names.size() > 0 ? names[0] : "";
   status_.robot_class = names.size() > 1 ? names[1] : "";
   status_.robot_subclass = names.size() > 2 ? names[2] : "";
@@ -194,20 +199,22 @@ std::vector<StandardSip> PioneerConnection::spinOnce(double now, double read_tim
     const bool fresh = now - command_time_ <= p_.cmd_vel_timeout;
     status_.watchdog_stopped = !fresh;
     const ArcosVelocity target = fresh ? toArcosVelocity(command_v_, command_w_, p_) : ArcosVelocity{};
-    if (target != status_.commanded)
+    // The setpoint goes out when it changes and again after every pulse_period without one (instead of a
+    // bare PULSE): a lost packet, a stop above all, is repeated, and any command keeps ARCOS's watchdog fed.
+    if (target != status_.commanded || now - last_tx_ >= p_.pulse_period)
     {
       send(arcosCommand(kVel, target.vel_mm_s), now);
       send(arcosCommand(kRvel, target.rvel_deg_s), now);
       status_.commanded = target;
     }
-    else if (now - last_tx_ >= p_.pulse_period)
-      send(arcosCommand(kPulse), now);
     if (now - last_sip_ > p_.sip_timeout)
       throw std::runtime_error("no valid SIP for " + std::to_string(now - last_sip_) + " s");
   }
   catch (const std::exception& e)
   {
-    lose(e.what(), now);
+    // Stop and CLOSE before the port goes: when only the robot-to-PC direction died, the base would
+    // otherwise keep its last setpoint, fed by the reconnection's SYNC0s (a PULSE to an open session).
+    disconnect(e.what(), now);
   }
   return sips;
 }

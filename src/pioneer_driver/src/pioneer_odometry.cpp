@@ -21,12 +21,32 @@ double normalizeAngle(double a)
   return a;
 }
 
-void PioneerOdometry::update(const StandardSip& sip)
+bool PioneerOdometry::update(const StandardSip& sip)
 {
   const double heading = sip.thpos * p_.angle_conv_factor;
+  const double l = sip.left_velocity * p_.vel_conv_factor * 1e-3, r = sip.right_velocity * p_.vel_conv_factor * 1e-3;
+  const double dx = wrappedDelta15(last_x_, sip.xpos) * p_.dist_conv_factor * 1e-3;
+  const double dy = wrappedDelta15(last_y_, sip.ypos) * p_.dist_conv_factor * 1e-3;
+  const bool implausible = std::abs(l) > kMaxWheelSpeed || std::abs(r) > kMaxWheelSpeed ||
+                           (initialised_ && std::hypot(dx, dy) > kMaxStep);
+  if (implausible)
+  {
+    ++implausible_;
+    if (++implausible_in_a_row_ < kImplausibleInARow || std::abs(l) > kMaxWheelSpeed || std::abs(r) > kMaxWheelSpeed)
+      return false;
+    restartCounters();  // the counters really jumped (a controller reset): go on from here
+  }
+  implausible_in_a_row_ = 0;
   if (!initialised_)
   {
-    initialised_ = true;
+    // The counters' origin: the pose so far is kept and the new counters' motion is added to it.
+    if (last_pose_valid_)
+    {
+      base_x_ = x_;
+      base_y_ = y_;
+      base_yaw_ = yaw_;
+    }
+    initialised_ = last_pose_valid_ = true;
     last_x_ = sip.xpos;
     last_y_ = sip.ypos;
     ux_ = uy_ = 0.0;
@@ -36,14 +56,16 @@ void PioneerOdometry::update(const StandardSip& sip)
   uy_ += wrappedDelta15(last_y_, sip.ypos) * p_.dist_conv_factor * 1e-3;
   last_x_ = sip.xpos;
   last_y_ = sip.ypos;
-  // Into the frame of the first SIP.
+  // Into the frame of the counters' first SIP, then onto the pose there.
   const double c = std::cos(-yaw0_), s = std::sin(-yaw0_);
-  x_ = c * ux_ - s * uy_;
-  y_ = s * ux_ + c * uy_;
-  yaw_ = normalizeAngle(heading - yaw0_);
-  const double l = sip.left_velocity * p_.vel_conv_factor, r = sip.right_velocity * p_.vel_conv_factor;
-  v_ = 0.5 * (l + r) * 1e-3;
-  w_ = 0.5 * (r - l) * p_.diff_conv_factor;
+  const double rx = c * ux_ - s * uy_, ry = s * ux_ + c * uy_;
+  const double cb = std::cos(base_yaw_), sb = std::sin(base_yaw_);
+  x_ = base_x_ + cb * rx - sb * ry;
+  y_ = base_y_ + sb * rx + cb * ry;
+  yaw_ = normalizeAngle(base_yaw_ + heading - yaw0_);
+  v_ = 0.5 * (l + r);
+  w_ = 0.5 * (r - l) * p_.diff_conv_factor * 1e3;
+  return true;
 }
 
 ArcosVelocity toArcosVelocity(double linear_m_s, double angular_rad_s, const PioneerParameters& p)

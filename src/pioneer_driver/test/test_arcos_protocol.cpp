@@ -169,6 +169,72 @@ TEST(PioneerOdometry, PoseIsRelativeToTheFirstSipAndVelocitiesFollowTheWheels)
   EXPECT_NEAR(odom.yaw(), normalizeAngle((2048 + 10) * 0.001534), 1e-9);
 }
 
+TEST(PioneerOdometry, AnImplausibleSipIsRefusedAndTheNextGoodOneContinues)
+{
+  PioneerOdometry odom;
+  StandardSip s;
+  s.xpos = 1000;
+  ASSERT_TRUE(odom.update(s));
+  s.xpos = 1100;
+  ASSERT_TRUE(odom.update(s));
+  StandardSip jump = s;
+  jump.xpos = 13100;  // 12 m in one SIP, checksum fine
+  EXPECT_FALSE(odom.update(jump));
+  StandardSip fast = s;
+  fast.left_velocity = fast.right_velocity = 32767;  // 32.8 m/s
+  EXPECT_FALSE(odom.update(fast));
+  EXPECT_NEAR(odom.x(), 0.1, 1e-9) << "the refused SIPs moved nothing";
+  EXPECT_NEAR(odom.linearVelocity(), 0.0, 1e-9);
+  s.xpos = 1200;
+  EXPECT_TRUE(odom.update(s));
+  EXPECT_NEAR(odom.x(), 0.2, 1e-9);
+  EXPECT_EQ(odom.implausible(), 2u);
+}
+
+TEST(PioneerOdometry, CountersThatReallyJumpedAreFollowedAfterThreeSipsWithoutAPoseJump)
+{
+  PioneerOdometry odom;
+  StandardSip s;
+  s.xpos = 1000;
+  odom.update(s);
+  s.xpos = 1500;
+  odom.update(s);  // 0.5 m
+  s.xpos = 20000;  // the controller's counters restarted elsewhere
+  EXPECT_FALSE(odom.update(s));
+  s.xpos = 20010;
+  EXPECT_FALSE(odom.update(s));
+  s.xpos = 20020;
+  EXPECT_TRUE(odom.update(s)) << "the third in a row is the new origin";
+  EXPECT_NEAR(odom.x(), 0.5, 1e-9);
+  s.xpos = 20120;
+  EXPECT_TRUE(odom.update(s));
+  EXPECT_NEAR(odom.x(), 0.6, 1e-9);
+}
+
+TEST(PioneerOdometry, AfterAReconnectionThePoseGoesOnFromWhereItWas)
+{
+  PioneerOdometry odom;
+  StandardSip s;
+  s.xpos = 1000;
+  odom.update(s);
+  for (int i = 0; i < 10; ++i)
+  {
+    s.xpos = static_cast<uint16_t>(s.xpos + 100);
+    odom.update(s);
+  }
+  ASSERT_NEAR(odom.x(), 1.0, 1e-9);
+  odom.restartCounters();
+  StandardSip n;  // the new session's counters start at 0, its heading at +y
+  n.thpos = 1024;
+  odom.update(n);
+  EXPECT_NEAR(odom.x(), 1.0, 1e-9) << "no jump back to the origin";
+  EXPECT_NEAR(odom.yaw(), 0.0, 1e-9);
+  n.ypos = 300;  // 0.3 m ahead in the new counters' frame
+  odom.update(n);
+  EXPECT_NEAR(odom.x(), 1.3, 1e-4);
+  EXPECT_NEAR(odom.y(), 0.0, 1e-4);
+}
+
 TEST(ArcosVelocity, TwistIsConvertedAndClampedToTheCaps)
 {
   PioneerParameters p;  // 0.5 m/s, 1.745 rad/s (99.98°/s → 99)

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cmath>
+#include <atomic>
 #include <functional>
 #include <thread>
 
@@ -96,7 +97,7 @@ TEST(PioneerConnection, CommandsArriveClampedAndOdometryFollowsTheRobot)
   EXPECT_NEAR(odom.yaw(), robot.yaw(), 0.003);
 }
 
-TEST(PioneerConnection, TheWatchdogStopsTheBaseWithoutCmdVelAndPulsesKeepTheSessionAlive)
+TEST(PioneerConnection, TheWatchdogStopsTheBaseWithoutCmdVelAndTheResentSetpointKeepsTheSessionAlive)
 {
   ArcosEmulator robot;
   PioneerConnection c(parametersFor(robot));
@@ -114,12 +115,38 @@ TEST(PioneerConnection, TheWatchdogStopsTheBaseWithoutCmdVelAndPulsesKeepTheSess
   EXPECT_GT(stopped_after, 0.5);
   EXPECT_LT(stopped_after, 0.8) << "the driver's 0.5 s time-out, not the robot's 2 s watchdog";
   EXPECT_TRUE(c.status().watchdog_stopped);
-  const unsigned long pulses = robot.commandCount(kPulse);
+  const unsigned long vels = robot.commandCount(kVel);
   spinUntil(
       c, nullptr, [] { return false; }, 2.5);
-  EXPECT_GE(robot.commandCount(kPulse), pulses + 2) << "PULSE at 1 Hz while idle";
+  EXPECT_GE(robot.commandCount(kVel), vels + 2) << "the zero setpoint again at 1 Hz while idle (the keep-alive)";
   EXPECT_TRUE(c.status().connected);
   EXPECT_TRUE(robot.sessionOpen());
+}
+
+TEST(PioneerConnection, ALostStopIsRepeatedWithinThePulsePeriod)
+{
+  ArcosEmulator robot;
+  PioneerParameters p = parametersFor(robot);
+  p.pulse_period = 0.3;
+  PioneerConnection c(p);
+  ASSERT_TRUE(spinUntil(
+      c, nullptr, [&] { return c.status().connected; }, 3.0))
+      << c.status().last_error;
+  auto drive = [&](double t) { c.setCommand(0.3, 0.0, t); };
+  ASSERT_TRUE(spinUntil(
+      c, nullptr, [&] { return robot.setpoint().vel_mm_s == 300; }, 1.0, drive));
+  robot.dropNext(kVel, 1);  // the stop's VEL 0 is lost on the line
+  const double stop = now();
+  c.setCommand(0.0, 0.0, stop);
+  spinUntil(
+      c, nullptr, [] { return false; }, 0.1);
+  EXPECT_EQ(robot.setpoint().vel_mm_s, 300) << "the stop was lost";
+  ASSERT_TRUE(spinUntil(
+      c, nullptr, [&] { return robot.setpoint().vel_mm_s == 0; }, 1.5))
+      << "never repeated: the base drives on";
+  const double stopped_after = now() - stop;
+  std::printf("[ MEASURED ] a lost stop repeated and applied %.3f s after it was lost\n", stopped_after);
+  EXPECT_LT(stopped_after, 0.8) << "within pulse_period (0.3 s), not the robot's 2 s watchdog";
 }
 
 TEST(PioneerConnection, CorruptedSipsAreRejectedAndTheSessionSurvives)
@@ -172,16 +199,50 @@ TEST(PioneerConnection, APulledCableIsReportedAndReconnected)
 
 TEST(PioneerConnection, ASilentRobotIsALostLink)
 {
-  ArcosEmulator robot("", 100.0);  // never sends a SIP after OPEN
+  ArcosEmulator robot("", 100.0);  // one SIP at OPEN, then silent: the robot-to-PC direction is dead
   PioneerParameters p = parametersFor(robot);
   p.sip_timeout = 0.5;
+  p.reconnect_period = 5.0;  // no handshake in the window below
   PioneerConnection c(p);
   ASSERT_TRUE(spinUntil(
       c, nullptr, [&] { return c.status().connects >= 1; }, 3.0))
       << c.status().last_error;
+  auto drive = [&](double t) { c.setCommand(0.3, 0.0, t); };
   ASSERT_TRUE(spinUntil(
-      c, nullptr, [&] { return c.status().losses >= 1; }, 2.0));
+      c, nullptr, [&] { return robot.setpoint().vel_mm_s == 300; }, 1.0, drive));
+  ASSERT_TRUE(spinUntil(
+      c, nullptr, [&] { return c.status().losses >= 1; }, 2.0, drive));
   EXPECT_NE(c.status().last_error.find("no valid SIP"), std::string::npos) << c.status().last_error;
+  // Stopped and closed by the driver at once, not 2 s later by the robot's watchdog (which the
+  // reconnection's SYNC0s would feed as PULSEs).
+  spinUntil(
+      c, nullptr, [] { return false; }, 0.2, drive);
+  EXPECT_EQ(robot.setpoint(), ArcosVelocity{});
+  EXPECT_GE(robot.commandCount(kClose), 1u);
+  EXPECT_FALSE(robot.sessionOpen());
+}
+
+TEST(PioneerConnection, APortThatEchoesIsNotARobot)
+{
+  // A loopback plug or a terminal echoes SYNC0, SYNC1 and a bare SYNC2: the handshake's echo steps pass,
+  // the SYNC2 reply names no robot.
+  biovision_common::PseudoTerminal loopback;
+  std::atomic<bool> stop{false};
+  std::thread echo([&] {
+    while (!stop)
+      loopback.write(loopback.read(256, 0.01));
+  });
+  PioneerParameters p;
+  p.port = loopback.slavePath();
+  p.baud = 115200;
+  p.reconnect_period = 0.2;
+  PioneerConnection c(p);
+  spinUntil(
+      c, nullptr, [] { return false; }, 1.0);
+  stop = true;
+  echo.join();
+  EXPECT_EQ(c.status().connects, 0u) << "an echo taken for a robot";
+  EXPECT_NE(c.status().last_error.find("no robot name"), std::string::npos) << c.status().last_error;
 }
 
 int main(int argc, char** argv)

@@ -48,6 +48,9 @@ public:
 
   /// Corrupts one byte of each of the next `n` SIPs (a noisy cable).
   void corruptNextSips(int n);
+  /// Loses the next `n` packets of command `command` from the driver (a lost packet on the line): they are
+  /// neither counted nor applied.
+  void dropNext(uint8_t command, int n);
   /// Sends `bytes` raw, as line noise.
   void injectBytes(const std::vector<uint8_t>& bytes);
   void setStallBumpers(uint16_t bits);
@@ -73,6 +76,7 @@ private:
   bool motors_ = false;
   ArcosVelocity setpoint_;
   std::map<uint8_t, unsigned long> counts_;
+  std::map<uint8_t, int> drop_;
   unsigned long sips_sent_ = 0;
   int corrupt_ = 0;
   uint16_t stall_bumpers_ = 0;

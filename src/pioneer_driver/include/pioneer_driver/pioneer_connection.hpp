@@ -27,8 +27,10 @@ struct PioneerStatus
 
 /// The ARCOS session with a Pioneer controller over a serial port, as a state machine driven by
 /// spinOnce(now): connect (SYNC0/1/2 with the robot's name, OPEN, PULSE, ENABLE), then each step read SIPs,
-/// send VEL + RVEL when the setpoint changes, zero it when no command came for cmd_vel_timeout, PULSE every
-/// pulse_period; a serial error or no SIP for sip_timeout closes the port and retries every
+/// send VEL + RVEL when the setpoint changes and again after every pulse_period without a command (a lost
+/// stop is repeated), zero it when no command came for cmd_vel_timeout; a SYNC2 reply without the robot's
+/// name is refused (an echoing port); a serial error or no SIP for sip_timeout sends VEL 0, RVEL 0, CLOSE
+/// (the robot stops even when only its replies are lost), closes the port and retries every
 /// reconnect_period. Never throws from spinOnce: failures are in status(). Times are seconds of a
 /// monotonic clock chosen by the caller. Not thread-safe.
 class PioneerConnection

@@ -13,11 +13,12 @@ struct PioneerParameters
   double max_linear_speed = 0.5;      ///< |VEL| cap [m/s], (0, 2.2] (p2os max_xspeed 0.5; P3DX MaxVelocity 2.2)
   double max_angular_speed = 1.745;  ///< |RVEL| cap [rad/s], (0, 8.7] (p2os max_yawspeed 100°/s; MaxRVelocity 500°/s)
   double cmd_vel_timeout = 0.5;      ///< [s] without cmd_vel the speed is set to zero, [0.05, 2]
-  double pulse_period = 1.0;         ///< [s] PULSE keep-alive period, [0.05, 1.9] (ARCOS stops after 2 s of silence)
-  double sip_timeout = 1.0;          ///< [s] no valid SIP for this long = link lost, [0.3, 10] (SIPs every 0.1 s)
-  double reconnect_period = 1.0;     ///< [s] between connection attempts, [0.1, 60]
-  double sync_timeout = 0.5;         ///< [s] wait for each SYNC echo, [0.05, 5]
-  bool enable_motors = true;         ///< send ENABLE 1 after OPEN (the motors are off after connecting)
+  double pulse_period =
+      1.0;  ///< [s] the setpoint is sent again after this long without a command (keep-alive, a lost stop repeated), [0.05, 1.9] (ARCOS stops after 2 s of silence)
+  double sip_timeout = 1.0;             ///< [s] no valid SIP for this long = link lost, [0.3, 10] (SIPs every 0.1 s)
+  double reconnect_period = 1.0;        ///< [s] between connection attempts, [0.1, 60]
+  double sync_timeout = 0.5;            ///< [s] wait for each SYNC echo, [0.05, 5]
+  bool enable_motors = true;            ///< send ENABLE 1 after OPEN (the motors are off after connecting)
   double angle_conv_factor = 0.001534;  ///< THPOS unit [rad], (0, 0.1] (2π/4096)
   double dist_conv_factor = 1.0;        ///< XPOS/YPOS unit [mm], (0, 10]
   double vel_conv_factor = 1.0;         ///< LVEL/RVEL unit [mm/s], (0, 10]

@@ -64,6 +64,7 @@ void PioneerDriverNodelet::onInit()
     s.add("sessions lost", status_.losses);
     s.add("SIPs", status_.sips);
     s.add("rejected packets", status_.rejected_packets);
+    s.add("implausible SIPs refused", implausible_sips_.load());
     s.add("VEL [mm/s]", status_.commanded.vel_mm_s);
     s.add("RVEL [deg/s]", status_.commanded.rvel_deg_s);
     s.add("cmd_vel time-out stop", status_.watchdog_stopped);
@@ -138,7 +139,7 @@ void PioneerDriverNodelet::run()
     if (st.connects != connects)
     {
       connects = st.connects;
-      odometry_.reset();  // the controller restarts its counters with each session
+      odometry_.restartCounters();  // the controller restarts its counters with each session; the pose goes on
       NODELET_INFO("connected to %s %s %s on %s", st.robot_name.c_str(), st.robot_class.c_str(),
                    st.robot_subclass.c_str(), parameters_.port.c_str());
     }
@@ -156,13 +157,27 @@ void PioneerDriverNodelet::run()
     }
     for (const auto& sip : sips)
       publish(sip);
+    implausible_sips_ = odometry_.implausible();
   }
 }
 
 void PioneerDriverNodelet::publish(const StandardSip& sip)
 {
-  odometry_.update(sip);
+  if (!odometry_.update(sip))
+  {
+    diagnostics_.health().reportError(
+        getName(), "an implausible SIP (a jump of more than " + std::to_string(PioneerOdometry::kMaxStep) +
+                       " m or a wheel faster than " + std::to_string(PioneerOdometry::kMaxWheelSpeed) +
+                       " m/s) was refused: odometry unchanged");
+    return;
+  }
   const ros::Time stamp = ros::Time::now();
+  if (stamp.isZero())
+  {
+    // use_sim_time without a /clock yet: a zero stamp would be taken for "no time" downstream.
+    NODELET_WARN_THROTTLE(5.0, "no ROS time yet (use_sim_time without /clock?): odometry not published");
+    return;
+  }
   tf2::Quaternion q;
   q.setRPY(0.0, 0.0, odometry_.yaw());
   nav_msgs::Odometry odom;

@@ -37,7 +37,8 @@ private:
 
   PioneerParameters parameters_;
   std::unique_ptr<PioneerConnection> connection_;
-  PioneerOdometry odometry_;
+  PioneerOdometry odometry_;                        // the run() thread's
+  std::atomic<unsigned long> implausible_sips_{0};  // odometry_.implausible(), for the diagnostics thread
   ros::Subscriber cmd_sub_;
   ros::Publisher odom_pub_, battery_pub_, state_pub_;
   std::unique_ptr<tf2_ros::TransformBroadcaster> tf_;

@@ -104,6 +104,20 @@ void Ax12BusEmulator::setRegister16(uint8_t id, uint8_t address, int value)
   s.table.at(address + 1) = static_cast<uint8_t>((value >> 8) & 0xFF);
 }
 
+void Ax12BusEmulator::dropNextSyncWrites(int n)
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  drop_sync_writes_ = n;
+}
+
+void Ax12BusEmulator::misreportPosition(uint8_t id, int ticks, int n)
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  Servo& s = servos_.at(id);
+  s.misreport_ticks = ticks;
+  s.misreports = n;
+}
+
 void Ax12BusEmulator::injectError(uint8_t id, uint8_t bits)
 {
   std::lock_guard<std::mutex> lock(mutex_);
@@ -171,6 +185,11 @@ void Ax12BusEmulator::handle(const DynamixelPacket& p)
 {
   if (p.id == kBroadcastId)
   {
+    if (p.code == kSyncWrite && p.params.size() >= 2 && drop_sync_writes_ > 0)
+    {
+      drop_sync_writes_--;
+      return;
+    }
     if (p.code == kSyncWrite && p.params.size() >= 2)
     {
       sync_writes_++;
@@ -201,7 +220,12 @@ void Ax12BusEmulator::handle(const DynamixelPacket& p)
       if (p.params.size() != 2)
         break;
       std::vector<uint8_t> out;
-      const int pos = static_cast<int>(std::lround(s.position));
+      int pos = static_cast<int>(std::lround(s.position));
+      if (s.misreports > 0)
+      {
+        s.misreports--;
+        pos = s.misreport_ticks;
+      }
       s.table[kAddrPresentPosition] = static_cast<uint8_t>(pos & 0xFF);
       s.table[kAddrPresentPosition + 1] = static_cast<uint8_t>(pos >> 8);
       for (size_t a = p.params[0]; a < p.params[0] + p.params[1] && a < s.table.size(); ++a)

@@ -15,7 +15,14 @@ int Ax12Joint::goalTicks(double rad) const
   if (!std::isfinite(rad))
     return -1;
   const double clamped = std::clamp(rad, lower, upper);
-  const long t = std::lround(kCenter + direction * (clamped + offset) / kRadPerTick);
+  long t = std::clamp(std::lround(kCenter + direction * (clamped + offset) / kRadPerTick), 0L, 1023L);
+  // The nearest tick to a goal at a limit can lie up to half a tick (2.6 mrad) beyond it: one tick back
+  // inside, when that tick is still within the limits (ticks grow with the angle when direction > 0).
+  const long inward = direction > 0 ? -1 : 1;
+  if (radians(static_cast<int>(t)) > upper && radians(static_cast<int>(t + inward)) >= lower)
+    t += inward;
+  else if (radians(static_cast<int>(t)) < lower && radians(static_cast<int>(t - inward)) <= upper)
+    t -= inward;
   return static_cast<int>(std::clamp(t, 0L, 1023L));
 }
 

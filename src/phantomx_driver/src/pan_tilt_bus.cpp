@@ -99,10 +99,24 @@ void PanTiltBus::poll(size_t index, double now)
   const Ax12Joint& j = joints_[index];
   if (!s.alive && now < s.next_retry)
     return;
-  const auto reply = transact(readPacket(j.id, kAddrPresentPosition, 8), j.id);
-  if (!reply || reply->params.size() != 8)
+  // Goal, moving speed, torque limit, then present position .. temperature (30..43): the goal register is
+  // read back, so a SYNC_WRITE lost on the line (broadcasts get no reply) is noticed and written again.
+  constexpr int kFirst = kAddrGoalPosition, kCount = kAddrPresentTemperature + 1 - kFirst;
+  const auto reply = transact(readPacket(j.id, kFirst, kCount), j.id);
+  if (!reply || reply->params.size() != kCount)
   {
     fail(index, "servo " + std::to_string(j.id) + " (" + j.name + ") does not answer", now);
+    return;
+  }
+  const auto& d = reply->params;
+  const int goal_register = fromLe16(d, kAddrGoalPosition - kFirst);
+  const int here = fromLe16(d, kAddrPresentPosition - kFirst);
+  if (here > 1023 || goal_register > 1023)
+  {
+    // 10 bits on an AX-12: a wider value passed the checksum but is not a position.
+    last_error_ = "servo " + std::to_string(j.id) + " (" + j.name + ") reported position " + std::to_string(here) +
+                  ", goal " + std::to_string(goal_register) + ": outside 0-1023, reply ignored";
+    fail(index, last_error_, now);
     return;
   }
   if (!s.alive)
@@ -110,7 +124,6 @@ void PanTiltBus::poll(size_t index, double now)
     // First contact or back after a loss: the goal register may hold anything from an earlier session, and
     // torque on drives the servo there at once. So: goal = where it is now (clamped into the limits), our
     // speed, then torque on (unless switched off for an overload); a wanted goal follows in the next step.
-    const int here = fromLe16(reply->params, 0);
     const int hold = std::clamp(here, std::min(j.goalTicks(j.lower), j.goalTicks(j.upper)),
                                 std::max(j.goalTicks(j.lower), j.goalTicks(j.upper)));
     transact(writePacket(j.id, kAddrGoalPosition, le16(hold)), j.id);
@@ -120,16 +133,20 @@ void PanTiltBus::poll(size_t index, double now)
     s.goal_sent = hold;
     s.alive = true;
   }
+  else if (!s.torque_off && s.goal_sent >= 0 && goal_register != s.goal_sent)
+  {
+    s.goal_sent = -1;  // step() writes the wanted goal again
+    s.goal_rewrites++;
+  }
   s.consecutive_misses = 0;
   s.polls++;
   s.error = reply->code;
-  const auto& d = reply->params;
-  s.position = j.radians(fromLe16(d, 0));
-  s.velocity = j.direction * presentSpeedRadPerS(fromLe16(d, 2));
-  const int load = fromLe16(d, 4);
+  s.position = j.radians(here);
+  s.velocity = j.direction * presentSpeedRadPerS(fromLe16(d, kAddrPresentSpeed - kFirst));
+  const int load = fromLe16(d, kAddrPresentLoad - kFirst);
   s.load = ((load & 0x400) != 0 ? -1.0 : 1.0) * (load & 0x3FF) / 1023.0;
-  s.voltage = d[6] * 0.1;
-  s.temperature = d[7];
+  s.voltage = d[kAddrPresentVoltage - kFirst] * 0.1;
+  s.temperature = d[kAddrPresentTemperature - kFirst];
   if ((s.error & kErrorOverload) != 0 && p_.torque_off_on_overload && !s.torque_off)
   {
     transact(writePacket(j.id, kAddrTorqueEnable, {0}), j.id);

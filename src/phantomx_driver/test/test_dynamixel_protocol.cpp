@@ -89,12 +89,23 @@ TEST(Ax12Joint, NeverAGoalBeyondTheLimits)
   Ax12Joint j;
   j.lower = -0.7854;
   j.upper = 0.7854;
-  for (double rad = -4.0; rad <= 4.0; rad += 0.01)
+  for (int direction : {1, -1})
   {
-    const double reached = j.radians(j.goalTicks(rad));
-    EXPECT_GE(reached, j.lower - 0.5 * Ax12Joint::kRadPerTick);
-    EXPECT_LE(reached, j.upper + 0.5 * Ax12Joint::kRadPerTick);
+    j.direction = direction;
+    for (double rad = -4.0; rad <= 4.0; rad += 0.01)
+    {
+      // Not even the half tick the nearest tick would give at the limit (pan's ±1.5708 was sent as ±1.5713).
+      const double reached = j.radians(j.goalTicks(rad));
+      EXPECT_GE(reached, j.lower) << rad << " direction " << direction;
+      EXPECT_LE(reached, j.upper) << rad << " direction " << direction;
+      EXPECT_LE(std::abs(reached - std::clamp(rad, j.lower, j.upper)), Ax12Joint::kRadPerTick + 1e-12);
+    }
   }
+  j.direction = 1;
+  j.lower = -1.5708;
+  j.upper = 1.5708;
+  EXPECT_LE(j.radians(j.goalTicks(1.5708)), 1.5708);
+  EXPECT_GE(j.radians(j.goalTicks(-1.5708)), -1.5708);
 }
 
 TEST(Ax12Joint, SpeedConversions)

@@ -91,6 +91,39 @@ TEST(PanTiltBus, GoalsGoOutBySyncWriteAndPositionsFollowWithinTheLimits)
   EXPECT_GE(servos.goalRange(1).first, bus.joint(0).goalTicks(-0.2));
 }
 
+TEST(PanTiltBus, ALostSyncWriteIsNoticedAndTheGoalWrittenAgain)
+{
+  Ax12BusEmulator servos;
+  PanTiltBus bus(parametersFor(servos));
+  ASSERT_TRUE(stepUntil(
+      bus, [&] { return bus.servo(0).alive && bus.servo(1).alive; }, 2.0));
+  servos.dropNextSyncWrites(1);  // the broadcast carrying the new goals never arrives
+  bus.setGoal(PanTiltBus::kPan, 0.5);
+  bus.setGoal(PanTiltBus::kTilt, 0.3);
+  ASSERT_TRUE(stepUntil(
+      bus, [&] { return std::abs(bus.servo(0).position - 0.5) < 0.01 && std::abs(bus.servo(1).position - 0.3) < 0.01; },
+      3.0))
+      << "the head stayed where it was: " << bus.servo(0).position << " " << bus.servo(1).position;
+  EXPECT_EQ(bus.servo(0).goal_rewrites, 1u);
+  EXPECT_EQ(bus.servo(1).goal_rewrites, 1u);
+}
+
+TEST(PanTiltBus, APositionBeyondTenBitsIsNotBelieved)
+{
+  Ax12BusEmulator servos;
+  PanTiltBus bus(parametersFor(servos));
+  ASSERT_TRUE(stepUntil(
+      bus, [&] { return bus.servo(0).alive && bus.servo(1).alive; }, 2.0));
+  const unsigned long misses = bus.servo(0).misses;
+  servos.misreportPosition(1, 65535, 1);  // checksum intact
+  stepUntil(
+      bus, [] { return false; }, 0.2);
+  EXPECT_EQ(bus.servo(0).misses, misses + 1);
+  EXPECT_TRUE(bus.servo(0).alive) << "one bad reply is a miss, not a lost servo";
+  EXPECT_NEAR(bus.servo(0).position, 0.0, 1e-9) << "332 rad would have been published";
+  EXPECT_NE(bus.lastError().find("outside 0-1023"), std::string::npos) << bus.lastError();
+}
+
 TEST(PanTiltBus, AnOverloadSwitchesThatServosTorqueOff)
 {
   Ax12BusEmulator servos;

@@ -47,6 +47,11 @@ public:
   void setSilent(uint8_t id, bool silent);
   /// Corrupts the checksum of the next `n` status packets.
   void corruptNextReplies(int n);
+  /// Loses the next `n` SYNC_WRITE broadcasts (a lost packet: no servo answers a broadcast).
+  void dropNextSyncWrites(int n);
+  /// The next `n` READs of `id` report `ticks` as the present position, checksum intact (a servo or line
+  /// fault the checksum does not catch; 0-1023 is the AX-12's range).
+  void misreportPosition(uint8_t id, int ticks, int n);
   void pullCable();
   void plugIn();
 
@@ -57,6 +62,7 @@ private:
     double position = 512.0;
     uint8_t error = 0;
     bool silent = false;
+    int misreport_ticks = 0, misreports = 0;
     int goal_min = 1023, goal_max = 0;
   };
   void run();
@@ -71,6 +77,7 @@ private:
   std::map<uint8_t, Servo> servos_;
   unsigned long sync_writes_ = 0;
   int corrupt_ = 0;
+  int drop_sync_writes_ = 0;
   std::atomic<bool> stop_{false};
   std::thread thread_;
 };

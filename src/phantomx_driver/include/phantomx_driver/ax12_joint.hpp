@@ -19,7 +19,8 @@ struct Ax12Joint
   double lower = -1.5;  ///< [rad] joint limit (the URDF's, narrowed by the servo's 0–1023 range)
   double upper = 1.5;   ///< [rad]
 
-  /// The goal position for `rad`, first clamped into [lower, upper], then into 0–1023. NaN → the
+  /// The goal position for `rad`, first clamped into [lower, upper], then into 0–1023, rounded to the
+  /// nearest tick that is not beyond a limit (when one exists). NaN → the
   /// current goal is kept by the caller (returns −1).
   int goalTicks(double rad) const;
   /// The joint angle [rad] of a present position.

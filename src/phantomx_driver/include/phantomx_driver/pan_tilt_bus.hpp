@@ -26,16 +26,19 @@ struct ServoState
   unsigned long polls = 0;   ///< answered polls
   unsigned long misses = 0;  ///< unanswered polls since start
   int consecutive_misses = 0;
-  int goal_sent = -1;       ///< ticks last written (−1 = none yet)
-  double next_retry = 0.0;  ///< when a lost servo is tried again [s]
+  int goal_sent = -1;               ///< ticks last written (−1 = none yet, or to be written again)
+  unsigned long goal_rewrites = 0;  ///< goals written again: the goal register read back differed (a lost SYNC_WRITE)
+  double next_retry = 0.0;          ///< when a lost servo is tried again [s]
 };
 
 /// Human-readable names of the set error bits ("overload, overheat"); empty for 0.
 std::string describeErrorBits(uint8_t error);
 
 /// The pan/tilt pair on one Dynamixel 1.0 bus, driven by step(now): goals to every live servo in one
-/// SYNC_WRITE when they change (goal + moving speed, addresses 30–33), then each servo's present position,
-/// speed, load, voltage and temperature by READ 36..43. A servo that stops answering is "lost" after
+/// SYNC_WRITE when they change (goal + moving speed, addresses 30–33), then each servo's goal register and
+/// present position, speed, load, voltage and temperature by READ 30..43; a goal register that differs from
+/// the goal written (a broadcast lost on the line: it gets no reply) has the goal written again; a
+/// position or goal above 1023 (a corrupted reply with a good checksum) counts as no answer. A servo that stops answering is "lost" after
 /// lost_after polls (the other keeps working) and tried again every retry_period; when it answers again it
 /// is re-initialised (speed, torque on). Status error bits are kept; an overload switches that servo's
 /// torque off. A serial error closes the port; it is reopened every retry_period. Goals are always within

@@ -86,6 +86,7 @@ void PhantomXDriverNodelet::onInit()
       s.add(n + "load", states_[i].load);
       s.add(n + "torque off (overload)", states_[i].torque_off);
       s.add(n + "unanswered polls", states_[i].misses);
+      s.add(n + "goals written again (read back differed)", states_[i].goal_rewrites);
     }
     s.add("last error", last_error_);
   };
@@ -129,6 +130,7 @@ void PhantomXDriverNodelet::run()
   std::array<bool, 2> alive{true, true}, torque_off{false, false};
   bool port_open = true;
   unsigned long rejected = 0;
+  std::string previous_error;
   while (running_ && ros::ok())
   {
     {
@@ -160,18 +162,26 @@ void PhantomXDriverNodelet::run()
     }
     // Report what changed for the worse.
     const std::string error = bus_->lastError();
+    bool reported = false;
     for (size_t i = 0; i < 2; ++i)
     {
       const ServoState& s = bus_->servo(i);
-      if (alive[i] && !s.alive && bus_->portOpen())
+      if ((alive[i] && !s.alive && bus_->portOpen()) || (!torque_off[i] && s.torque_off))
+      {
         diagnostics_.health().reportError(getName(), error);
-      if (!torque_off[i] && s.torque_off)
-        diagnostics_.health().reportError(getName(), error);
+        reported = true;
+      }
       alive[i] = s.alive;
       torque_off[i] = s.torque_off;
     }
     if (port_open && !bus_->portOpen())
+    {
       diagnostics_.health().reportError(getName(), "PhantomX port down: " + error);
+      reported = true;
+    }
+    if (!reported && !error.empty() && error != previous_error)  // e.g. a reply with a position beyond 0-1023
+      diagnostics_.health().reportError(getName(), error);
+    previous_error = error;
     port_open = bus_->portOpen();
     if (bus_->rejectedPackets() != rejected)
       diagnostics_.health().reportError(getName(), std::to_string(bus_->rejectedPackets()) +

@@ -9,10 +9,12 @@ namespace bumblebee2_driver
 void Bumblebee2Parameters::validate() const
 {
   auto fail = [](const std::string& what) { throw std::invalid_argument("Bumblebee2Parameters: " + what); };
-  if (width <= 0 || width > 1600 || width % 2 != 0)
-    fail("width = " + std::to_string(width) + " is not an even number in (0, 1600]");
-  if (height <= 0 || height > 1200 || height % 2 != 0)
-    fail("height = " + std::to_string(height) + " is not an even number in (0, 1200]");
+  // At least 16 px: the Bayer 2 x 2 cells and the first frame's left/right check (a phase correlation)
+  // need some image (2 x 2 frames aborted the node).
+  if (width < 16 || width > 1600 || width % 2 != 0)
+    fail("width = " + std::to_string(width) + " is not an even number in [16, 1600]");
+  if (height < 16 || height > 1200 || height % 2 != 0)
+    fail("height = " + std::to_string(height) + " is not an even number in [16, 1200]");
   if (!(frame_rate > 0.0 && frame_rate <= 30.0))
     fail("frame_rate = " + std::to_string(frame_rate) + " outside (0, 30] Hz");
   auto feature = [&](const char* name, int v) {

@@ -79,6 +79,19 @@ TEST(Bumblebee2DriverNode, NoCameraIsADiagnosticsErrorAndTheNodeKeepsRetrying)
   EXPECT_EQ(left.count(), 0u) << "nothing published without a camera";
 }
 
+TEST(Bumblebee2DriverNode, AFrameFileThatIsADirectoryIsAnErrorAndTheNodeKeepsRunning)
+{
+  // It threw std::ios_failure out of the capture thread and aborted the process.
+  ros::NodeHandle nh;
+  DiagnosticsWatch diagnostics(nh, "bb_dir: Bumblebee-2");
+  TopicProbe<sensor_msgs::Image> left(nh, "dir/stereo/left/image_raw");
+  ASSERT_TRUE(waitFor([&] { return diagnostics.received() >= 3; }, 15.0)) << "the node died";
+  EXPECT_TRUE(diagnostics.sawError());
+  const std::string m = diagnostics.lastMessage();
+  EXPECT_NE(m.find("not a regular file"), std::string::npos) << m;
+  EXPECT_EQ(left.count(), 0u);
+}
+
 int main(int argc, char** argv)
 {
   biovision_ros_common::RosTestRun tests(argc, argv, "bumblebee2_driver_node_test", 2);

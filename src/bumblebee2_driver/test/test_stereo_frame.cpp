@@ -171,6 +171,9 @@ TEST(Bumblebee2Parameters, DefaultsValidateAndEachBadFieldIsNamed)
   p.height = 0;
   expectNamed(p, "height");
   p = {};
+  p.height = 2;  // a 32 x 2 frame aborted the node in the first frame's left/right check
+  expectNamed(p, "height");
+  p = {};
   p.frame_rate = 0.0;
   expectNamed(p, "frame_rate");
   p = {};

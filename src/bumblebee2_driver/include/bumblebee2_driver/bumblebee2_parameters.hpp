@@ -9,8 +9,8 @@ namespace bumblebee2_driver
 struct Bumblebee2Parameters
 {
   std::string guid;                    ///< camera GUID in hex ("" = the first camera found)
-  int width = 1024;                    ///< [px] of each sensor, (0, 1600], even
-  int height = 768;                    ///< [px], (0, 1200], even
+  int width = 1024;                    ///< [px] of each sensor, [16, 1600], even
+  int height = 768;                    ///< [px], [16, 1200], even
   double frame_rate = 15.0;            ///< [Hz], (0, 30] (BB2-08S2C: ≤ 20 at 1024×768)
   int exposure = -1;                   ///< raw EXPOSURE feature value, −1 = automatic, else [0, 4095]
   int shutter = -1;                    ///< raw SHUTTER feature value, −1 = automatic, else [0, 4095]

@@ -1,11 +1,15 @@
 #include "bumblebee2_driver/ros/bumblebee2_driver_nodelet.hpp"
 
+#include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 
 #include <opencv2/imgproc.hpp>
 #include <pluginlib/class_list_macros.hpp>
 #include <sensor_msgs/image_encodings.h>
+
+#include "biovision_ros_common/typed_parameter.hpp"
 
 namespace bumblebee2_driver
 {
@@ -39,9 +43,13 @@ void Bumblebee2DriverNodelet::onInit()
 {
   ros::NodeHandle& nh = getNodeHandle();
   ros::NodeHandle& pnh = getPrivateNodeHandle();
-  visitParameters(parameters_, [&](const std::string& name, auto& value) { pnh.param(name, value, value); });
   try
   {
+    // A value of the wrong type is refused, not replaced by the default (a driver told `_port:=123` opened
+    // /dev/ttyUSB0).
+    visitParameters(parameters_, [&](const std::string& name, auto& value) {
+      biovision_ros_common::readTypedParameter(pnh, name, value);
+    });
     parameters_.validate();
   }
   catch (const std::invalid_argument& e)
@@ -94,34 +102,63 @@ void Bumblebee2DriverNodelet::run()
                                             : bayerPatternFromName(parameters_.bayer_pattern);
   const bool from_file = !parameters_.frame_file.empty();
   std::vector<uint8_t> file_frame;
-  ros::WallRate rate(parameters_.frame_rate);
-  double next_attempt = 0.0;
+  // Sleeps in short slices, so that a shutdown is never kept waiting by a long retry_period or a low
+  // frame_rate (a 0.01 Hz rate or a 60 s retry held SIGINT off until SIGKILL).
+  auto pause = [this](double seconds) {
+    const double end = ros::WallTime::now().toSec() + seconds;
+    for (double left = seconds; left > 0.0 && running_ && ros::ok(); left = end - ros::WallTime::now().toSec())
+      ros::WallDuration(std::min(left, 0.05)).sleep();
+  };
+  double next_frame = ros::WallTime::now().toSec(), next_attempt = 0.0;
   while (running_ && ros::ok())
   {
     if (from_file)
     {
       if (file_frame.empty())
       {
-        std::ifstream in(parameters_.frame_file, std::ios::binary);
-        file_frame.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
         const size_t expected = static_cast<size_t>(parameters_.width) * parameters_.height * 2;
-        if (file_frame.size() != expected)
+        std::string error;
+        std::error_code ec;
+        // Checked before reading: a directory threw, /dev/zero read until memory ran out, a FIFO blocked.
+        if (!std::filesystem::is_regular_file(parameters_.frame_file, ec))
+          error = "frame_file " + parameters_.frame_file + ": not a regular file";
+        else if (const auto size = std::filesystem::file_size(parameters_.frame_file, ec); ec || size != expected)
+          error = "frame_file " + parameters_.frame_file + ": " +
+                  (ec ? ec.message() : std::to_string(size) + " bytes") +
+                  ", expected width x height x 2 = " + std::to_string(expected);
+        else
         {
-          const std::string error = "frame_file " + parameters_.frame_file + ": " + std::to_string(file_frame.size()) +
-                                    " bytes, expected width x height x 2 = " + std::to_string(expected);
+          std::ifstream in(parameters_.frame_file, std::ios::binary);
+          file_frame.resize(expected);
+          if (!in.read(reinterpret_cast<char*>(file_frame.data()), static_cast<std::streamsize>(expected)))
+            error = "frame_file " + parameters_.frame_file + ": cannot read " + std::to_string(expected) + " bytes";
+        }
+        if (!error.empty())
+        {
           diagnostics_.health().reportError(getName(), error);
-          std::lock_guard<std::mutex> lock(status_mutex_);
-          last_error_ = error;
+          {
+            std::lock_guard<std::mutex> lock(status_mutex_);
+            last_error_ = error;
+          }
           file_frame.clear();
-          ros::WallDuration(parameters_.retry_period).sleep();
+          pause(parameters_.retry_period);
           continue;
         }
         std::lock_guard<std::mutex> lock(status_mutex_);
         source_ = "file " + parameters_.frame_file;
         pattern_name_ = bayerPatternName(override_pattern);
       }
-      publish(file_frame, override_pattern);
-      rate.sleep();
+      try
+      {
+        publish(file_frame, override_pattern);
+      }
+      catch (const std::exception& e)
+      {
+        diagnostics_.health().reportError(getName(), std::string("frame_file ") + parameters_.frame_file +
+                                                         ": cannot publish: " + e.what());
+      }
+      next_frame = std::max(next_frame + 1.0 / parameters_.frame_rate, ros::WallTime::now().toSec());
+      pause(next_frame - ros::WallTime::now().toSec());
       continue;
     }
     if (!camera_.isOpen())
@@ -129,7 +166,7 @@ void Bumblebee2DriverNodelet::run()
       const double now = ros::WallTime::now().toSec();
       if (now < next_attempt)
       {
-        ros::WallDuration(0.05).sleep();
+        pause(0.05);
         continue;
       }
       try

@@ -6,6 +6,8 @@
 #include <sensor_msgs/JointState.h>
 #include <urdf/model.h>
 
+#include "biovision_ros_common/typed_parameter.hpp"
+
 namespace phantomx_driver
 {
 namespace
@@ -27,9 +29,13 @@ void PhantomXDriverNodelet::onInit()
 {
   ros::NodeHandle& nh = getNodeHandle();
   ros::NodeHandle& pnh = getPrivateNodeHandle();
-  visitParameters(parameters_, [&](const std::string& name, auto& value) { pnh.param(name, value, value); });
   try
   {
+    // A value of the wrong type is refused, not replaced by the default (a driver told `_port:=123` opened
+    // /dev/ttyUSB0).
+    visitParameters(parameters_, [&](const std::string& name, auto& value) {
+      biovision_ros_common::readTypedParameter(pnh, name, value);
+    });
     bus_ = std::make_unique<PanTiltBus>(parameters_);
     // Never command beyond the robot's limits: the URDF's, narrowed by the servo's range.
     urdf::Model model;

@@ -8,6 +8,7 @@
 #include <sensor_msgs/BatteryState.h>
 #include <tf2/LinearMath/Quaternion.h>
 
+#include "biovision_ros_common/typed_parameter.hpp"
 #include "pioneer_driver/ros/pioneer_driver_config.hpp"
 
 namespace pioneer_driver
@@ -32,9 +33,13 @@ void PioneerDriverNodelet::onInit()
 {
   ros::NodeHandle& nh = getNodeHandle();
   ros::NodeHandle& pnh = getPrivateNodeHandle();
-  visitParameters(parameters_, [&](const std::string& name, auto& value) { pnh.param(name, value, value); });
   try
   {
+    // A value of the wrong type is refused, not replaced by the default (a driver told `_port:=123` opened
+    // /dev/ttyUSB0).
+    visitParameters(parameters_, [&](const std::string& name, auto& value) {
+      biovision_ros_common::readTypedParameter(pnh, name, value);
+    });
     connection_ = std::make_unique<PioneerConnection>(parameters_);
   }
   catch (const std::invalid_argument& e)

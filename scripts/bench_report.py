@@ -38,6 +38,11 @@ def workspace_relative(text):
     return text
 
 
+def flat_dict(v):
+    """A non-empty dict of plain values (one table row)."""
+    return isinstance(v, dict) and bool(v) and all(not isinstance(x, (dict, list)) for x in v.values())
+
+
 def section(path, folder):
     """The lines of one benchmark's section, from its JSON."""
     text = workspace_relative(path.read_text())
@@ -55,10 +60,13 @@ def section(path, folder):
         data.pop("scenes")
         lines += [f"Per-scene figures: `out/bench/{path.name}` (written by the same run).", ""]
     # Entries whose values are all flat dicts (methods, ratios) become one table, a row each.
-    tables = {k: v for k, v in data.items()
-              if isinstance(v, dict) and v and all(not isinstance(x, (dict, list)) for x in v.values())}
+    tables = {k: v for k, v in data.items() if flat_dict(v)}
+    # Entries whose values are all flat dicts (e.g. by_condition: condition -> method -> figure) become a
+    # table of their own, headed by the entry's name.
+    nested = {k: v for k, v in data.items() if k not in tables and isinstance(v, dict) and v and
+              all(flat_dict(x) for x in v.values())}
     rows = []
-    flatten("", {k: v for k, v in data.items() if k not in tables}, rows)
+    flatten("", {k: v for k, v in data.items() if k not in tables and k not in nested}, rows)
     if rows:
         lines += ["| figure | value |", "|---|---:|"]
         for k, v in rows:
@@ -74,6 +82,13 @@ def section(path, folder):
             v = tables[name]
             cells = [format(v[c], '.4g') if isinstance(v[c], float) else str(v[c]) for c in columns]
             lines.append(f"| {name} | " + " | ".join(cells) + " |")
+        lines.append("")
+    for name, inner in nested.items():
+        columns = list(dict.fromkeys(c for v in inner.values() for c in v))
+        lines += [f"| {name} | " + " | ".join(columns) + " |", "|---|" + "---:|" * len(columns)]
+        for row, v in inner.items():
+            cells = [format(v[c], '.4g') if isinstance(v.get(c), float) else str(v.get(c, '')) for c in columns]
+            lines.append(f"| {row} | " + " | ".join(cells) + " |")
         lines.append("")
     if notes:
         lines += [notes, ""]

@@ -135,9 +135,26 @@ void PanTiltBus::poll(size_t index, double now)
   }
   else if (!s.torque_off && s.goal_sent >= 0 && goal_register != s.goal_sent)
   {
-    s.goal_sent = -1;  // step() writes the wanted goal again
-    s.goal_rewrites++;
+    if (s.rewrites_in_a_row < kMaxGoalRewrites)
+    {
+      if (goal_wanted_[index] < 0)
+        goal_wanted_[index] = s.goal_sent;  // the hold goal of the first contact: step() writes it again
+      s.goal_sent = -1;
+      s.goal_rewrites++;
+      s.rewrites_in_a_row++;
+    }
+    else if (s.rewrites_in_a_row == kMaxGoalRewrites)
+    {
+      // Written and read back different kMaxGoalRewrites times: the servo does not keep it (its angle
+      // limits in EEPROM?). Not written in a loop; a new goal tries again.
+      s.rewrites_in_a_row++;
+      last_error_ = "servo " + std::to_string(j.id) + " (" + j.name + ") does not keep goal " +
+                    std::to_string(s.goal_sent) + " (reads back " + std::to_string(goal_register) +
+                    "): its angle limits? not written again until the goal changes";
+    }
   }
+  else if (goal_register == s.goal_sent)
+    s.rewrites_in_a_row = 0;
   s.consecutive_misses = 0;
   s.polls++;
   s.error = reply->code;
@@ -181,6 +198,8 @@ void PanTiltBus::step(double now)
       ServoState& s = servos_[i];
       if (s.alive && !s.torque_off && goal_wanted_[i] >= 0 && goal_wanted_[i] != s.goal_sent)
       {
+        if (s.goal_sent >= 0)
+          s.rewrites_in_a_row = 0;  // a new goal, not a rewrite
         std::vector<uint8_t> data = le16(goal_wanted_[i]);
         const auto speed = le16(speed_ticks_);
         data.insert(data.end(), speed.begin(), speed.end());

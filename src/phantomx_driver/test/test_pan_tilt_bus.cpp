@@ -108,6 +108,24 @@ TEST(PanTiltBus, ALostSyncWriteIsNoticedAndTheGoalWrittenAgain)
   EXPECT_EQ(bus.servo(1).goal_rewrites, 1u);
 }
 
+TEST(PanTiltBus, AGoalTheServoDoesNotKeepIsWrittenAFewTimesThenLeftWithAnError)
+{
+  Ax12BusEmulator servos;
+  PanTiltBus bus(parametersFor(servos));
+  ASSERT_TRUE(stepUntil(
+      bus, [&] { return bus.servo(0).alive && bus.servo(1).alive; }, 2.0));
+  servos.dropNextSyncWrites(1000);  // as a servo whose angle limits refuse every new goal
+  bus.setGoal(PanTiltBus::kPan, 0.5);
+  stepUntil(
+      bus, [] { return false; }, 0.5);
+  EXPECT_EQ(bus.servo(0).goal_rewrites, static_cast<unsigned long>(PanTiltBus::kMaxGoalRewrites)) << "not a loop";
+  EXPECT_NE(bus.lastError().find("does not keep goal"), std::string::npos) << bus.lastError();
+  servos.dropNextSyncWrites(0);
+  bus.setGoal(PanTiltBus::kPan, 0.3);  // a new goal is tried again
+  ASSERT_TRUE(stepUntil(
+      bus, [&] { return std::abs(bus.servo(0).position - 0.3) < 0.01; }, 3.0));
+}
+
 TEST(PanTiltBus, APositionBeyondTenBitsIsNotBelieved)
 {
   Ax12BusEmulator servos;

@@ -69,6 +69,7 @@ std::vector<uint8_t> PioneerConnection::awaitPacket(double timeout)
 
 void PioneerConnection::connect(double now)
 {
+  const double started = steadyNow();  // the handshake can take seconds: `now` is advanced by its length below
   port_.open(p_.port, p_.baud);
   parser_ = ArcosPacketParser();
   bool synced = false;
@@ -117,7 +118,10 @@ void PioneerConnection::connect(double now)
   status_.connected = true;
   status_.connects++;
   rejected_base_ = parser_.rejected();
-  last_sip_ = now;  // grace until the first SIP
+  // Grace until the first SIP from the end of the handshake, not its start: a handshake answered on the
+  // third SYNC0 took 1.5 s of the 1 s sip_timeout, and the new session was dropped 20 ms after OPEN.
+  now += steadyNow() - started;
+  last_sip_ = now;
   last_tx_ = now;
 }
 

@@ -21,20 +21,25 @@ double normalizeAngle(double a)
   return a;
 }
 
-bool PioneerOdometry::update(const StandardSip& sip)
+bool PioneerOdometry::update(const StandardSip& sip, double now)
 {
   const double heading = sip.thpos * p_.angle_conv_factor;
   const double l = sip.left_velocity * p_.vel_conv_factor * 1e-3, r = sip.right_velocity * p_.vel_conv_factor * 1e-3;
   const double dx = wrappedDelta15(last_x_, sip.xpos) * p_.dist_conv_factor * 1e-3;
   const double dy = wrappedDelta15(last_y_, sip.ypos) * p_.dist_conv_factor * 1e-3;
-  const bool implausible = std::abs(l) > kMaxWheelSpeed || std::abs(r) > kMaxWheelSpeed ||
-                           (initialised_ && std::hypot(dx, dy) > kMaxStep);
-  if (implausible)
+  const double dt = std::max(0.0, now - last_time_);
+  const bool wheels = std::abs(l) > kMaxWheelSpeed || std::abs(r) > kMaxWheelSpeed;
+  const bool jump = initialised_ &&
+                    (std::hypot(dx, dy) > kStepSlack + kMaxWheelSpeed * dt ||
+                     std::abs(normalizeAngle(heading - last_heading_)) > kTurnSlack + kMaxTurnRate * dt);
+  if (wheels || jump)
   {
     ++implausible_;
-    if (++implausible_in_a_row_ < kImplausibleInARow || std::abs(l) > kMaxWheelSpeed || std::abs(r) > kMaxWheelSpeed)
+    // Jumps in a row are the controller's counters restarted (a reset): go on from the third. A wheel
+    // speed no P3-DX reaches is never followed.
+    if (wheels || ++implausible_in_a_row_ < kImplausibleInARow)
       return false;
-    restartCounters();  // the counters really jumped (a controller reset): go on from here
+    restartCounters();
   }
   implausible_in_a_row_ = 0;
   if (!initialised_)
@@ -56,6 +61,8 @@ bool PioneerOdometry::update(const StandardSip& sip)
   uy_ += wrappedDelta15(last_y_, sip.ypos) * p_.dist_conv_factor * 1e-3;
   last_x_ = sip.xpos;
   last_y_ = sip.ypos;
+  last_time_ = now;
+  last_heading_ = heading;
   // Into the frame of the counters' first SIP, then onto the pose there.
   const double c = std::cos(-yaw0_), s = std::sin(-yaw0_);
   const double rx = c * ux_ - s * uy_, ry = s * ux_ + c * uy_;

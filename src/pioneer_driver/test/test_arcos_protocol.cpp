@@ -134,13 +134,14 @@ TEST(PioneerOdometry, FifteenBitPositionsWrapAround)
   EXPECT_EQ(wrappedDelta15(5, 32760), -13);
   EXPECT_EQ(wrappedDelta15(100, 300), 200);
   PioneerOdometry odom;
+  double t = 0.0;  // SIPs every 100 ms
   StandardSip s;
   s.xpos = 32000;
-  odom.update(s);
+  odom.update(s, t += 0.1);
   for (int step = 0; step < 20; ++step)  // 20 × 100 mm across the wrap at 32768
   {
     s.xpos = static_cast<uint16_t>((s.xpos + 100) & 0x7FFF);
-    odom.update(s);
+    odom.update(s, t += 0.1);
   }
   EXPECT_NEAR(odom.x(), 2.0, 1e-9);
   EXPECT_NEAR(odom.y(), 0.0, 1e-9);
@@ -149,44 +150,46 @@ TEST(PioneerOdometry, FifteenBitPositionsWrapAround)
 TEST(PioneerOdometry, PoseIsRelativeToTheFirstSipAndVelocitiesFollowTheWheels)
 {
   PioneerOdometry odom;
+  double t = 0.0;  // SIPs every 100 ms
   StandardSip s;
   s.thpos = 1024;  // the controller starts facing +y (π/2)
   s.xpos = 1000;
   s.ypos = 1000;
-  odom.update(s);
+  odom.update(s, t += 0.1);
   s.ypos = 1500;  // 0.5 m ahead in the controller's frame
   s.left_velocity = 100;
   s.right_velocity = 300;
-  odom.update(s);
+  odom.update(s, t += 0.1);
   // 1024 units are 1.570816 rad, not exactly π/2: 10 µm of sideways error over 0.5 m.
   EXPECT_NEAR(odom.x(), 0.5, 1e-6);
   EXPECT_NEAR(odom.y(), 0.0, 2e-5);
   EXPECT_NEAR(odom.yaw(), 0.0, 1e-9);
   EXPECT_NEAR(odom.linearVelocity(), 0.2, 1e-9);
   EXPECT_NEAR(odom.angularVelocity(), 100 * 0.0056, 1e-9);
-  s.thpos = 1024 + 2048 + 10;  // half a turn on: wraps into (−π, π]
-  odom.update(s);
+  s.thpos = 1024 + 2048 + 10;  // half a turn on, 1 s later: wraps into (−π, π]
+  ASSERT_TRUE(odom.update(s, t += 1.0));
   EXPECT_NEAR(odom.yaw(), normalizeAngle((2048 + 10) * 0.001534), 1e-9);
 }
 
 TEST(PioneerOdometry, AnImplausibleSipIsRefusedAndTheNextGoodOneContinues)
 {
   PioneerOdometry odom;
+  double t = 0.0;  // SIPs every 100 ms
   StandardSip s;
   s.xpos = 1000;
-  ASSERT_TRUE(odom.update(s));
+  ASSERT_TRUE(odom.update(s, t += 0.1));
   s.xpos = 1100;
-  ASSERT_TRUE(odom.update(s));
+  ASSERT_TRUE(odom.update(s, t += 0.1));
   StandardSip jump = s;
   jump.xpos = 13100;  // 12 m in one SIP, checksum fine
-  EXPECT_FALSE(odom.update(jump));
+  EXPECT_FALSE(odom.update(jump, t += 0.1));
   StandardSip fast = s;
   fast.left_velocity = fast.right_velocity = 32767;  // 32.8 m/s
-  EXPECT_FALSE(odom.update(fast));
+  EXPECT_FALSE(odom.update(fast, t += 0.1));
   EXPECT_NEAR(odom.x(), 0.1, 1e-9) << "the refused SIPs moved nothing";
   EXPECT_NEAR(odom.linearVelocity(), 0.0, 1e-9);
   s.xpos = 1200;
-  EXPECT_TRUE(odom.update(s));
+  EXPECT_TRUE(odom.update(s, t += 0.1));
   EXPECT_NEAR(odom.x(), 0.2, 1e-9);
   EXPECT_EQ(odom.implausible(), 2u);
 }
@@ -194,45 +197,83 @@ TEST(PioneerOdometry, AnImplausibleSipIsRefusedAndTheNextGoodOneContinues)
 TEST(PioneerOdometry, CountersThatReallyJumpedAreFollowedAfterThreeSipsWithoutAPoseJump)
 {
   PioneerOdometry odom;
+  double t = 0.0;  // SIPs every 100 ms
   StandardSip s;
   s.xpos = 1000;
-  odom.update(s);
+  odom.update(s, t += 0.1);
   s.xpos = 1500;
-  odom.update(s);  // 0.5 m
-  s.xpos = 20000;  // the controller's counters restarted elsewhere
-  EXPECT_FALSE(odom.update(s));
+  odom.update(s, t += 0.1);  // 0.5 m
+  s.xpos = 20000;            // the controller's counters restarted elsewhere
+  EXPECT_FALSE(odom.update(s, t += 0.1));
   s.xpos = 20010;
-  EXPECT_FALSE(odom.update(s));
+  EXPECT_FALSE(odom.update(s, t += 0.1));
   s.xpos = 20020;
-  EXPECT_TRUE(odom.update(s)) << "the third in a row is the new origin";
+  EXPECT_TRUE(odom.update(s, t += 0.1)) << "the third in a row is the new origin";
   EXPECT_NEAR(odom.x(), 0.5, 1e-9);
   s.xpos = 20120;
-  EXPECT_TRUE(odom.update(s));
+  EXPECT_TRUE(odom.update(s, t += 0.1));
   EXPECT_NEAR(odom.x(), 0.6, 1e-9);
 }
 
 TEST(PioneerOdometry, AfterAReconnectionThePoseGoesOnFromWhereItWas)
 {
   PioneerOdometry odom;
+  double t = 0.0;  // SIPs every 100 ms
   StandardSip s;
   s.xpos = 1000;
-  odom.update(s);
+  odom.update(s, t += 0.1);
   for (int i = 0; i < 10; ++i)
   {
     s.xpos = static_cast<uint16_t>(s.xpos + 100);
-    odom.update(s);
+    odom.update(s, t += 0.1);
   }
   ASSERT_NEAR(odom.x(), 1.0, 1e-9);
   odom.restartCounters();
   StandardSip n;  // the new session's counters start at 0, its heading at +y
   n.thpos = 1024;
-  odom.update(n);
+  odom.update(n, t += 0.1);
   EXPECT_NEAR(odom.x(), 1.0, 1e-9) << "no jump back to the origin";
   EXPECT_NEAR(odom.yaw(), 0.0, 1e-9);
   n.ypos = 300;  // 0.3 m ahead in the new counters' frame
-  odom.update(n);
+  odom.update(n, t += 0.1);
   EXPECT_NEAR(odom.x(), 1.3, 1e-4);
   EXPECT_NEAR(odom.y(), 0.0, 1e-4);
+}
+
+TEST(PioneerOdometry, FastTurnsAndGapsInTheSipsAtSpeedAreMotionNotJumps)
+{
+  PioneerOdometry odom;
+  double t = 0.0;
+  StandardSip s;
+  s.xpos = 1000;
+  ASSERT_TRUE(odom.update(s, t));
+  // 2.2 m/s and 500 deg/s at once: wheels at 2.2 -+ 1.56 m/s, within the P3-DX's reach.
+  s.left_velocity = 640;
+  s.right_velocity = 3760;
+  s.xpos = 1220;
+  s.thpos = 85;  // 0.13 rad in 100 ms
+  EXPECT_TRUE(odom.update(s, t += 0.1));
+  // No SIP for 0.4 s at 2.2 m/s (a dropped stretch): 0.88 m in one step is motion, not a jump.
+  s.left_velocity = s.right_velocity = 2200;
+  s.xpos = 2100;
+  EXPECT_TRUE(odom.update(s, t += 0.4));
+  EXPECT_NEAR(odom.linearVelocity(), 2.2, 1e-9);
+  EXPECT_EQ(odom.implausible(), 0u);
+}
+
+TEST(PioneerOdometry, AHeadingJumpWithAGoodChecksumIsRefused)
+{
+  PioneerOdometry odom;
+  double t = 0.0;
+  StandardSip s;
+  s.thpos = 100;
+  ASSERT_TRUE(odom.update(s, t));
+  const double yaw = odom.yaw();
+  s.thpos = 100 + 1024;  // a quarter turn in 100 ms: 15.7 rad/s, beyond RVEL's 500 deg/s
+  EXPECT_FALSE(odom.update(s, t += 0.1));
+  EXPECT_NEAR(odom.yaw(), yaw, 1e-12);
+  s.thpos = 110;
+  EXPECT_TRUE(odom.update(s, t += 0.1));
 }
 
 TEST(ArcosVelocity, TwistIsConvertedAndClampedToTheCaps)

@@ -31,7 +31,7 @@ bool spinUntil(PioneerConnection& c, PioneerOdometry* odom, const std::function<
       command(now());
     for (const auto& sip : c.spinOnce(now(), 0.02))
       if (odom)
-        odom->update(sip);
+        odom->update(sip, now());
     if (done())
       return true;
   }

@@ -28,6 +28,7 @@ struct ServoState
   int consecutive_misses = 0;
   int goal_sent = -1;               ///< ticks last written (−1 = none yet, or to be written again)
   unsigned long goal_rewrites = 0;  ///< goals written again: the goal register read back differed (a lost SYNC_WRITE)
+  int rewrites_in_a_row = 0;        ///< of the current goal (capped: PanTiltBus::kMaxGoalRewrites)
   double next_retry = 0.0;          ///< when a lost servo is tried again [s]
 };
 
@@ -47,6 +48,9 @@ class PanTiltBus
 {
 public:
   static constexpr size_t kPan = 0, kTilt = 1;
+  /// A goal whose register reads back different is written again this many times, then left with an error
+  /// (a servo whose EEPROM angle limits refuse it would otherwise get a SYNC_WRITE every poll).
+  static constexpr int kMaxGoalRewrites = 3;
 
   /// Throws std::invalid_argument when the parameters do not validate.
   explicit PanTiltBus(const PhantomXParameters& parameters);

@@ -15,18 +15,26 @@ int wrappedDelta15(uint16_t a, uint16_t b);
 class PioneerOdometry
 {
 public:
-  /// A SIP moving the robot farther than this from the previous one is implausible [m]: 6 m/s at the
-  /// 100 ms SIP cycle, where ARCOS caps VEL at 2.2 m/s (the checksum is a 16-bit sum: weak).
-  static constexpr double kMaxStep = 0.6;
-  /// A wheel faster than this is implausible [m/s] (ARCOS's VEL cap is 2.2 m/s).
-  static constexpr double kMaxWheelSpeed = 3.0;
+  /// The fastest a wheel can go [m/s]: ARCOS caps VEL at 2.2 m/s and RVEL at 500 deg/s, which adds
+  /// 1.56 m/s on each wheel of a P3-DX (diff_conv_factor 0.0056); anything faster in a SIP is a corrupted
+  /// SIP with a good checksum (a 16-bit sum: weak).
+  static constexpr double kMaxWheelSpeed = 4.0;
+  /// The fastest turn [rad/s]: RVEL's cap, 500 deg/s.
+  static constexpr double kMaxTurnRate = 8.8;
+  /// Slack on a step [m] and a turn [rad] between two accepted SIPs, on top of the speeds above times the
+  /// time between them (SIPs arrive bunched on a loaded machine).
+  static constexpr double kStepSlack = 0.3;
+  static constexpr double kTurnSlack = 0.5;
   /// This many implausible SIPs in a row are the controller's counters restarted, not noise: the pose
   /// goes on from the newest of them.
   static constexpr int kImplausibleInARow = 3;
 
   explicit PioneerOdometry(const PioneerParameters& parameters = {}) : p_(parameters) {}
-  /// Adds one SIP; false (pose and velocities unchanged) when it is implausible (kMaxStep, kMaxWheelSpeed).
-  bool update(const StandardSip& sip);
+  /// Adds one SIP received at `now` [s, any monotonic clock]; false (pose and velocities unchanged) when it
+  /// is implausible: a wheel faster than kMaxWheelSpeed, or a step or turn since the last accepted SIP
+  /// beyond what kMaxWheelSpeed and kMaxTurnRate allow in the time between them (plus the slack). A gap
+  /// in the SIPs at speed is therefore no jump; the counters are absolute, so nothing is lost across it.
+  bool update(const StandardSip& sip, double now);
   /// After a reconnection the controller restarts its counters: the pose goes on from where it was, the
   /// next SIP is the new counters' origin (the motion while the link was down is not seen).
   void restartCounters() { initialised_ = false; }
@@ -46,6 +54,8 @@ private:
   double yaw0_ = 0.0;
   double base_x_ = 0.0, base_y_ = 0.0, base_yaw_ = 0.0;  // the pose at the counters' origin
   bool last_pose_valid_ = false;                         // x_, y_, yaw_ hold a pose (the next origin continues from it)
+  double last_time_ = 0.0;                               // when the last accepted SIP arrived
+  double last_heading_ = 0.0;                            // its heading [rad, controller frame]
   int implausible_in_a_row_ = 0;
   unsigned long implausible_ = 0;
   double x_ = 0.0, y_ = 0.0, yaw_ = 0.0, v_ = 0.0, w_ = 0.0;

@@ -168,19 +168,24 @@ void PioneerDriverNodelet::run()
 
 void PioneerDriverNodelet::publish(const StandardSip& sip)
 {
-  if (!odometry_.update(sip))
+  if (!odometry_.update(sip, steadyNow()))
   {
-    diagnostics_.health().reportError(
-        getName(), "an implausible SIP (a jump of more than " + std::to_string(PioneerOdometry::kMaxStep) +
-                       " m or a wheel faster than " + std::to_string(PioneerOdometry::kMaxWheelSpeed) +
-                       " m/s) was refused: odometry unchanged");
+    diagnostics_.health().reportError(getName(), "an implausible SIP was refused (a wheel beyond " +
+                                                     std::to_string(PioneerOdometry::kMaxWheelSpeed) +
+                                                     " m/s, or a jump or turn no P3-DX makes in the time since the "
+                                                     "last SIP): odometry unchanged");
     return;
   }
   const ros::Time stamp = ros::Time::now();
   if (stamp.isZero())
   {
     // use_sim_time without a /clock yet: a zero stamp would be taken for "no time" downstream.
-    NODELET_WARN_THROTTLE(5.0, "no ROS time yet (use_sim_time without /clock?): odometry not published");
+    // Throttled on the steady clock: ROS time is what is missing (a ROS-time throttle never fires at 0).
+    if (steadyNow() - last_no_time_warning_ >= 5.0)
+    {
+      NODELET_WARN("no ROS time yet (use_sim_time without /clock?): odometry not published");
+      last_no_time_warning_ = steadyNow();
+    }
     return;
   }
   tf2::Quaternion q;

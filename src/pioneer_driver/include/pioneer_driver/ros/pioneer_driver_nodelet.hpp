@@ -37,8 +37,9 @@ private:
 
   PioneerParameters parameters_;
   std::unique_ptr<PioneerConnection> connection_;
-  PioneerOdometry odometry_;                        // the run() thread's
-  std::atomic<unsigned long> implausible_sips_{0};  // odometry_.implausible(), for the diagnostics thread
+  PioneerOdometry odometry_;  // the run() thread's
+  std::atomic<unsigned long> implausible_sips_{0};
+  double last_no_time_warning_ = -1e9;  // steady clock [s]  // odometry_.implausible(), for the diagnostics thread
   ros::Subscriber cmd_sub_;
   ros::Publisher odom_pub_, battery_pub_, state_pub_;
   std::unique_ptr<tf2_ros::TransformBroadcaster> tf_;

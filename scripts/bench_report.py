@@ -43,6 +43,16 @@ def flat_dict(v):
     return isinstance(v, dict) and bool(v) and all(not isinstance(x, (dict, list)) for x in v.values())
 
 
+def table(corner, rows):
+    """A markdown table, a row per entry of `rows` (name -> flat dict), columns in order of appearance."""
+    columns = list(dict.fromkeys(c for v in rows.values() for c in v))
+    lines = [(f"| {corner} | " if corner else "| | ") + " | ".join(columns) + " |", "|---|" + "---:|" * len(columns)]
+    for name, v in rows.items():
+        cells = [format(v[c], '.4g') if isinstance(v.get(c), float) else str(v.get(c, '')) for c in columns]
+        lines.append(f"| {name} | " + " | ".join(cells) + " |")
+    return lines + [""]
+
+
 def section(path, folder):
     """The lines of one benchmark's section, from its JSON."""
     text = workspace_relative(path.read_text())
@@ -61,7 +71,7 @@ def section(path, folder):
         lines += [f"Per-scene figures: `out/bench/{path.name}` (written by the same run).", ""]
     # Entries whose values are all flat dicts (methods, ratios) become one table, a row each.
     tables = {k: v for k, v in data.items() if flat_dict(v)}
-    # Entries whose values are all flat dicts (e.g. by_condition: condition -> method -> figure) become a
+    # Entries that are dicts of flat dicts (e.g. by_condition: condition -> method -> figure) become a
     # table of their own, headed by the entry's name.
     nested = {k: v for k, v in data.items() if k not in tables and isinstance(v, dict) and v and
               all(flat_dict(x) for x in v.values())}
@@ -77,19 +87,9 @@ def section(path, folder):
     for name, v in tables.items():
         groups.setdefault(tuple(v), []).append(name)
     for columns, names in groups.items():
-        lines += ["| | " + " | ".join(columns) + " |", "|---|" + "---:|" * len(columns)]
-        for name in names:
-            v = tables[name]
-            cells = [format(v[c], '.4g') if isinstance(v[c], float) else str(v[c]) for c in columns]
-            lines.append(f"| {name} | " + " | ".join(cells) + " |")
-        lines.append("")
+        lines += table("", {name: tables[name] for name in names})
     for name, inner in nested.items():
-        columns = list(dict.fromkeys(c for v in inner.values() for c in v))
-        lines += [f"| {name} | " + " | ".join(columns) + " |", "|---|" + "---:|" * len(columns)]
-        for row, v in inner.items():
-            cells = [format(v[c], '.4g') if isinstance(v.get(c), float) else str(v.get(c, '')) for c in columns]
-            lines.append(f"| {row} | " + " | ".join(cells) + " |")
-        lines.append("")
+        lines += table(name, inner)
     if notes:
         lines += [notes, ""]
     return lines

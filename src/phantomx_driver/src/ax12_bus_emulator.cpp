@@ -4,14 +4,12 @@
 #include <chrono>
 #include <cmath>
 
+#include "biovision_common/steady_seconds.hpp"
+
 namespace phantomx_driver
 {
 namespace
 {
-double steadyNow()
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 constexpr double kTicksPerRpmSecond = 1023.0 / 300.0 * 360.0 / 60.0;  // ticks/s per rpm
 }  // namespace
 
@@ -246,7 +244,7 @@ void Ax12BusEmulator::handle(const DynamixelPacket& p)
 
 void Ax12BusEmulator::run()
 {
-  double last = steadyNow();
+  double last = biovision_common::steadySeconds();
   while (!stop_)
   {
     {
@@ -256,7 +254,7 @@ void Ax12BusEmulator::run()
         bytes = pty_->read(256, 0.0);
       for (const auto& p : parser_.feed(bytes))
         handle(p);
-      const double now = steadyNow(), dt = now - last;
+      const double now = biovision_common::steadySeconds(), dt = now - last;
       last = now;
       for (auto& [id, s] : servos_)
       {

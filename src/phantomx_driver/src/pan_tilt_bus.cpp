@@ -1,20 +1,13 @@
 #include "phantomx_driver/pan_tilt_bus.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
+#include "biovision_common/steady_seconds.hpp"
+
 namespace phantomx_driver
 {
-namespace
-{
-double steadyNow()
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-}  // namespace
-
 std::string describeErrorBits(uint8_t error)
 {
   static const std::pair<uint8_t, const char*> kNames[] = {
@@ -67,10 +60,10 @@ bool PanTiltBus::setGoal(size_t index, double rad)
 std::optional<DynamixelPacket> PanTiltBus::transact(const std::vector<uint8_t>& packet, uint8_t id)
 {
   port_.write(packet);
-  const double end = steadyNow() + p_.response_timeout;
+  const double end = biovision_common::steadySeconds() + p_.response_timeout;
   while (true)
   {
-    const double left = end - steadyNow();
+    const double left = end - biovision_common::steadySeconds();
     if (left <= 0.0)
       return std::nullopt;
     for (auto& reply : parser_.feed(port_.read(64, left)))

@@ -4,16 +4,13 @@
 #include <chrono>
 #include <cmath>
 
+#include "biovision_common/steady_seconds.hpp"
 #include "pioneer_driver/standard_sip.hpp"
 
 namespace pioneer_driver
 {
 namespace
 {
-double steadyNow()
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 constexpr double kDiffConv = 0.0056;     // P3DX DiffConvFactor
 constexpr double kAngleConv = 0.001534;  // P3DX AngleConvFactor
 constexpr double kWatchdog = 2.0;        // ARCOS default watchdog [s]
@@ -221,7 +218,7 @@ void ArcosEmulator::sendSip()
 
 void ArcosEmulator::run()
 {
-  double last = steadyNow(), next_sip = last;
+  double last = biovision_common::steadySeconds(), next_sip = last;
   while (!stop_)
   {
     std::vector<uint8_t> bytes;
@@ -230,7 +227,7 @@ void ArcosEmulator::run()
       if (pty_)
         bytes = pty_->read(512, 0.0);
     }
-    const double now = steadyNow();
+    const double now = biovision_common::steadySeconds();
     {
       std::lock_guard<std::mutex> lock(mutex_);
       for (const auto& p : parser_.feed(bytes))

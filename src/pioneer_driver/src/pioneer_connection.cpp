@@ -4,16 +4,10 @@
 #include <stdexcept>
 #include <thread>
 
+#include "biovision_common/steady_seconds.hpp"
+
 namespace pioneer_driver
 {
-namespace
-{
-double steadyNow()
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-}  // namespace
-
 PioneerConnection::PioneerConnection(const PioneerParameters& parameters) : p_(parameters)
 {
   p_.validate();
@@ -54,10 +48,10 @@ void PioneerConnection::setCommand(double linear_m_s, double angular_rad_s, doub
 
 std::vector<uint8_t> PioneerConnection::awaitPacket(double timeout)
 {
-  const double end = steadyNow() + timeout;
+  const double end = biovision_common::steadySeconds() + timeout;
   while (true)
   {
-    const double left = end - steadyNow();
+    const double left = end - biovision_common::steadySeconds();
     if (left <= 0.0)
       return {};
     const auto bytes = port_.read(256, left);
@@ -69,7 +63,8 @@ std::vector<uint8_t> PioneerConnection::awaitPacket(double timeout)
 
 void PioneerConnection::connect(double now)
 {
-  const double started = steadyNow();  // the handshake can take seconds: `now` is advanced by its length below
+  const double started =
+      biovision_common::steadySeconds();  // the handshake can take seconds: `now` is advanced by its length below
   port_.open(p_.port, p_.baud);
   parser_ = ArcosPacketParser();
   bool synced = false;
@@ -120,7 +115,7 @@ void PioneerConnection::connect(double now)
   rejected_base_ = parser_.rejected();
   // Grace until the first SIP from the end of the handshake, not its start: a handshake answered on the
   // third SYNC0 took 1.5 s of the 1 s sip_timeout, and the new session was dropped 20 ms after OPEN.
-  now += steadyNow() - started;
+  now += biovision_common::steadySeconds() - started;
   last_sip_ = now;
   last_tx_ = now;
 }

@@ -52,13 +52,14 @@ bool PioneerOdometry::update(const StandardSip& sip, double now)
       base_yaw_ = yaw_;
     }
     initialised_ = last_pose_valid_ = true;
-    last_x_ = sip.xpos;
-    last_y_ = sip.ypos;
     ux_ = uy_ = 0.0;
     yaw0_ = heading;
   }
-  ux_ += wrappedDelta15(last_x_, sip.xpos) * p_.dist_conv_factor * 1e-3;
-  uy_ += wrappedDelta15(last_y_, sip.ypos) * p_.dist_conv_factor * 1e-3;
+  else
+  {
+    ux_ += dx;  // the step checked above
+    uy_ += dy;
+  }
   last_x_ = sip.xpos;
   last_y_ = sip.ypos;
   last_time_ = now;

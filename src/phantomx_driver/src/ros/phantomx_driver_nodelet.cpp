@@ -6,18 +6,11 @@
 #include <sensor_msgs/JointState.h>
 #include <urdf/model.h>
 
+#include "biovision_common/steady_seconds.hpp"
 #include "biovision_ros_common/typed_parameter.hpp"
 
 namespace phantomx_driver
 {
-namespace
-{
-double steadyNow()
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-}  // namespace
-
 PhantomXDriverNodelet::~PhantomXDriverNodelet()
 {
   running_ = false;
@@ -132,7 +125,7 @@ void PhantomXDriverNodelet::onCommand(size_t index, const std_msgs::Float64Const
 void PhantomXDriverNodelet::run()
 {
   const double period = 1.0 / parameters_.poll_rate;
-  double next = steadyNow();
+  double next = biovision_common::steadySeconds();
   std::array<bool, 2> alive{true, true}, torque_off{false, false};
   bool port_open = true;
   unsigned long rejected = 0;
@@ -148,7 +141,7 @@ void PhantomXDriverNodelet::run()
           goal_new_[i] = false;
         }
     }
-    bus_->step(steadyNow());
+    bus_->step(biovision_common::steadySeconds());
     sensor_msgs::JointState js;
     js.header.stamp = ros::Time::now();
     for (size_t i = 0; i < 2; ++i)
@@ -201,11 +194,11 @@ void PhantomXDriverNodelet::run()
       rejected_ = rejected;
     }
     next += period;
-    const double wait = next - steadyNow();
+    const double wait = next - biovision_common::steadySeconds();
     if (wait > 0.0)
       std::this_thread::sleep_for(std::chrono::duration<double>(wait));
     else
-      next = steadyNow();
+      next = biovision_common::steadySeconds();
   }
 }
 }  // namespace phantomx_driver

@@ -1,26 +1,17 @@
 #include "pioneer_driver/ros/pioneer_driver_nodelet.hpp"
 
-#include <chrono>
-
 #include <biovision_msgs/PioneerState.h>
 #include <nav_msgs/Odometry.h>
 #include <pluginlib/class_list_macros.hpp>
 #include <sensor_msgs/BatteryState.h>
 #include <tf2/LinearMath/Quaternion.h>
 
+#include "biovision_common/steady_seconds.hpp"
 #include "biovision_ros_common/typed_parameter.hpp"
 #include "pioneer_driver/ros/pioneer_driver_config.hpp"
 
 namespace pioneer_driver
 {
-namespace
-{
-double steadyNow()
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-}  // namespace
-
 PioneerDriverNodelet::~PioneerDriverNodelet()
 {
   running_ = false;
@@ -116,7 +107,7 @@ void PioneerDriverNodelet::onCommand(const geometry_msgs::TwistConstPtr& msg)
   std::lock_guard<std::mutex> lock(command_mutex_);
   command_v_ = msg->linear.x;
   command_w_ = msg->angular.z;
-  command_time_ = steadyNow();
+  command_time_ = biovision_common::steadySeconds();
   command_new_ = true;
 }
 
@@ -139,7 +130,7 @@ void PioneerDriverNodelet::run()
         connection_->setCommand(command_v_, command_w_, command_time_);
       command_new_ = false;
     }
-    const auto sips = connection_->spinOnce(steadyNow(), 0.02);
+    const auto sips = connection_->spinOnce(biovision_common::steadySeconds(), 0.02);
     const PioneerStatus& st = connection_->status();
     if (st.connects != connects)
     {
@@ -168,7 +159,7 @@ void PioneerDriverNodelet::run()
 
 void PioneerDriverNodelet::publish(const StandardSip& sip)
 {
-  if (!odometry_.update(sip, steadyNow()))
+  if (!odometry_.update(sip, biovision_common::steadySeconds()))
   {
     diagnostics_.health().reportError(getName(), "an implausible SIP was refused (a wheel beyond " +
                                                      std::to_string(PioneerOdometry::kMaxWheelSpeed) +
@@ -181,10 +172,10 @@ void PioneerDriverNodelet::publish(const StandardSip& sip)
   {
     // use_sim_time without a /clock yet: a zero stamp would be taken for "no time" downstream.
     // Throttled on the steady clock: ROS time is what is missing (a ROS-time throttle never fires at 0).
-    if (steadyNow() - last_no_time_warning_ >= 5.0)
+    if (biovision_common::steadySeconds() - last_no_time_warning_ >= 5.0)
     {
       NODELET_WARN("no ROS time yet (use_sim_time without /clock?): odometry not published");
-      last_no_time_warning_ = steadyNow();
+      last_no_time_warning_ = biovision_common::steadySeconds();
     }
     return;
   }

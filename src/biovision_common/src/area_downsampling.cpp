@@ -8,6 +8,8 @@
 #include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "biovision_common/parallel_arena.hpp"
+
 namespace biovision_common
 {
 namespace
@@ -76,7 +78,7 @@ template <typename T>
 void AreaDownsampling::applyTyped(const cv::Mat& src, cv::Mat& dst) const
 {
   const int cn = src.channels(), w_in = input_.width * cn;
-  cv::parallel_for_(cv::Range(0, output_.height), [&](const cv::Range& range) {
+  biovision_common::parallelFor(cv::Range(0, output_.height), [&](const cv::Range& range) {
     std::vector<float> acc(w_in);
     for (int y = range.start; y < range.end; ++y)
     {

@@ -44,6 +44,7 @@ ScopedProcessingTimer::~ScopedProcessingTimer()
   timespec cpu{}, wall{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &cpu);
   clock_gettime(CLOCK_MONOTONIC, &wall);
-  ProcessingTimes::instance().record(stage_, seconds(cpu) - seconds(cpu_start_), seconds(wall) - seconds(wall_start_));
+  ProcessingTimes::instance().record(stage_, seconds(cpu) - seconds(cpu_start_) + extra_cpu_seconds_,
+                                     seconds(wall) - seconds(wall_start_));
 }
 }  // namespace biovision_ros_common

@@ -25,6 +25,7 @@
 #include "biovision_v1/end_stopped_cells.hpp"
 #include "biovision_v1/line_edge_detector.hpp"
 #include "biovision_v1/simple_cell_bank.hpp"
+#include "biovision_common/parallel_arena.hpp"
 
 namespace biovision_stereo
 {
@@ -354,7 +355,7 @@ CostVolume BioBinMatcher::levelCosts(size_t level, const cv::Mat& left, const cv
   // the two images side by side halve the fast mode's wait; a large one's runs in parallel inside anyway.
   cv::Mat labs[2], grays_f[2];
   const cv::Mat* bgr[2] = {&left, &right};
-  cv::parallel_for_(
+  biovision_common::parallelFor(
       cv::Range(0, 2),
       [&](const cv::Range& images) {
         for (int i = images.start; i < images.end; ++i)
@@ -408,7 +409,7 @@ CostVolume BioBinMatcher::levelCosts(size_t level, const cv::Mat& left, const cv
   const MaskedCostRows rows_in{left_planes, right_planes, &left_codes, &right_codes, &dog, &costs, row_max.data(),
                                w,           nd,           n_th,        damp,         boost};
   const CostSimd simd = cost_simd_;
-  cv::parallel_for_(cv::Range(0, h), [&](const cv::Range& rows) {
+  biovision_common::parallelFor(cv::Range(0, h), [&](const cv::Range& rows) {
     if (simd == CostSimd::kAvx512)
       maskedCostRowsAvx512(rows_in, rows.start, rows.end);
     else if (simd == CostSimd::kAvx2)
@@ -437,7 +438,7 @@ float BioBinMatcher::fuseWithCoarser(CostVolume& costs, float max_cost, const Co
   const double scale = nd > 1 ? double(d_in - 1) / double(nd - 1) : 0.0;
   std::vector<float> slice_min(nd);
   const LinearResampling resampling(coarser.size(), costs.size());
-  cv::parallel_for_(cv::Range(0, nd), [&](const cv::Range& ks) {
+  biovision_common::parallelFor(cv::Range(0, nd), [&](const cv::Range& ks) {
     cv::Mat mixed;
     std::vector<float> scratch;
     for (int k = ks.start; k < ks.end; ++k)
@@ -469,7 +470,7 @@ DisparityMap BioBinMatcher::winnerTakeAll(const CostVolume& costs, cv::Size inpu
   const int w = size.width, h = size.height, nd = costs.disparities();
   cv::Mat left_d(size, CV_32F), right_k(size, CV_32S);
   const CostSimd simd = cost_simd_;
-  cv::parallel_for_(cv::Range(0, h), [&](const cv::Range& rows) {
+  biovision_common::parallelFor(cv::Range(0, h), [&](const cv::Range& rows) {
     std::vector<float> best_cost(w), best_right(w);
     std::vector<int> best(w);
     for (int y = rows.start; y < rows.end; ++y)
@@ -619,7 +620,7 @@ DisparityMap BioBinMatcher::compute(const cv::Mat& left_in, const cv::Mat& right
       const cv::Mat* in[2] = {&left, &right};
       cv::Mat* out[2] = {&l, &r};
       const biovision_common::AreaDownsampling& d = *down;
-      cv::parallel_for_(
+      biovision_common::parallelFor(
           cv::Range(0, 2),
           [&](const cv::Range& images) {
             for (int i = images.start; i < images.end; ++i)

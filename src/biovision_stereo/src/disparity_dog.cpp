@@ -8,6 +8,7 @@
 #include <opencv2/core/utility.hpp>
 
 #include "avx512_clone.hpp"
+#include "biovision_common/parallel_arena.hpp"
 
 namespace biovision_stereo
 {
@@ -183,7 +184,7 @@ void DisparityDog::apply(const CostVolume& in, CostVolume& out) const
   const int nd = in.disparities(), w = in.size().width;
   if (nd == 0)
     return;  // nothing to filter
-  cv::parallel_for_(cv::Range(0, in.size().height), [&](const cv::Range& rows) {
+  biovision_common::parallelFor(cv::Range(0, in.size().height), [&](const cv::Range& rows) {
     std::vector<const float*> i(nd);
     std::vector<float*> o(nd);
     std::vector<std::vector<float>> scratch;
@@ -204,7 +205,7 @@ void DisparityDog::applyInPlace(CostVolume& costs) const
   const int nd = costs.disparities(), w = costs.size().width;
   if (nd == 0)
     return;
-  cv::parallel_for_(cv::Range(0, costs.size().height), [&](const cv::Range& rows) {
+  biovision_common::parallelFor(cv::Range(0, costs.size().height), [&](const cv::Range& rows) {
     std::vector<float> copy(size_t(nd) * w);  // one image row of the volume: the filter's input
     std::vector<const float*> i(nd);
     std::vector<float*> o(nd);

@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "avx512_clone.hpp"
+#include "biovision_common/parallel_arena.hpp"
 
 namespace biovision_stereo
 {
@@ -104,7 +105,7 @@ void IterativeSpatialFilter::apply(CostVolume& costs, const cv::Mat& barriers) c
   for (int it = 0; it < max_iterations_; ++it)
   {
     std::atomic<size_t> changed{0};
-    cv::parallel_for_(cv::Range(0, costs.disparities()), [&](const cv::Range& ks) {
+    biovision_common::parallelFor(cv::Range(0, costs.disparities()), [&](const cv::Range& ks) {
       cv::Mat masked, mean;
       size_t moved = 0;
       for (int k = ks.start; k < ks.end; ++k)

@@ -13,6 +13,7 @@
 #endif
 
 #include "biovision_common/cpu_features.hpp"
+#include "biovision_common/parallel_arena.hpp"
 
 namespace biovision_stereo
 {
@@ -161,7 +162,7 @@ void PixelDescriptorImage::computeComparisons(const std::vector<cv::Mat>& odd, P
   comparisons.resize(size_t(h) * row_bytes);
   const auto comparisonsOf = [&](int y) { return comparisons.data() + size_t(y) * row_bytes + kLeftMargin; };
   const bool avx2 = biovision_common::CpuFeatures::host().avx2;
-  cv::parallel_for_(cv::Range(0, h), [&](const cv::Range& rows) {
+  biovision_common::parallelFor(cv::Range(0, h), [&](const cv::Range& rows) {
     for (int y = rows.start; y < rows.end; ++y)
     {
       std::uint8_t* c = comparisonsOf(y);
@@ -179,7 +180,7 @@ void PixelDescriptorImage::compute(const std::vector<cv::Mat>& odd, PixelDescrip
   image.data_.resize(size_t(w) * h);  // every descriptor is written below
   const auto comparisonsOf = [&](int y) { return image.comparisons(y); };
   // Each descriptor: bytes x-8..x+7 of its row, x-4..x+3 of the rows above and below (clamped).
-  cv::parallel_for_(cv::Range(0, h), [&](const cv::Range& rows) {
+  biovision_common::parallelFor(cv::Range(0, h), [&](const cv::Range& rows) {
     for (int y = rows.start; y < rows.end; ++y)
     {
       const std::uint8_t* centre = comparisonsOf(y);

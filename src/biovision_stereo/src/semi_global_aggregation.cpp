@@ -10,6 +10,7 @@
 #include <opencv2/core/utility.hpp>
 
 #include "biovision_common/cpu_features.hpp"
+#include "biovision_common/parallel_arena.hpp"
 
 namespace biovision_stereo
 {
@@ -370,7 +371,7 @@ void SemiGlobalAggregation::aggregate(const std::vector<std::uint16_t>& costs, i
     throw std::invalid_argument("SemiGlobalAggregation: barriers must be empty or CV_8U of the volume's size");
   if (simd == Simd::kAvx2 && !biovision_common::CpuFeatures::host().avx2)
     throw std::invalid_argument("SemiGlobalAggregation: the AVX2 path needs a CPU with AVX2");
-  cv::parallel_for_(cv::Range(0, 2), [&](const cv::Range& r) {
+  biovision_common::parallelFor(cv::Range(0, 2), [&](const cv::Range& r) {
     for (int b = r.start; b < r.end; ++b)
     {
       std::vector<std::uint16_t>& sums = b ? backward : forward;
@@ -387,7 +388,7 @@ void SemiGlobalAggregation::toPixelMajor(const CostVolume& costs, float lowest, 
 {
   const int w = costs.size().width, h = costs.size().height, nd = costs.disparities(), stride_ = stride(nd);
   out.resize(size_t(w) * h * stride_);
-  cv::parallel_for_(cv::Range(0, h), [&](const cv::Range& rows) {
+  biovision_common::parallelFor(cv::Range(0, h), [&](const cv::Range& rows) {
     std::vector<const float*> c(nd);
     for (int y = rows.start; y < rows.end; ++y)
     {
@@ -416,7 +417,7 @@ void SemiGlobalAggregation::winners(const std::vector<std::uint16_t>& forward,
   right_k.create(height, width, CV_32S);
   const WinnerRows in{forward.data(),      backward.data(), width, disparities,
                       stride(disparities), subpixel,        &left, &right_k};
-  cv::parallel_for_(cv::Range(0, height), [&](const cv::Range& rows) {
+  biovision_common::parallelFor(cv::Range(0, height), [&](const cv::Range& rows) {
     if (simd == Simd::kAvx2)
       winnerRowsAvx2(in, rows.start, rows.end);
     else

@@ -24,6 +24,7 @@
 #include "biovision_stereo/occlusion_filling.hpp"
 #include "biovision_common/eval/middlebury_dataset.hpp"
 #include "biovision_common/cpu_features.hpp"
+#include "biovision_common/parallel_arena.hpp"
 #include "biovision_stereo/pixel_descriptor.hpp"
 #include "biovision_stereo/semi_global_aggregation.hpp"
 #include "biovision_v1/fourier_transform.hpp"
@@ -1265,6 +1266,37 @@ TEST(BioBinMatcher, BeatsBlockMatchingOnRealCones)
                                                        s.nonoccluded);
   EXPECT_LT(m.bad1, 13.0) << "bad 1.0 on cones";
   EXPECT_LT(m.avgerr, 2.5);
+}
+
+TEST(BioBinMatcher, OwnWorkerThreadsGiveTheSameMapBitForBit)
+{
+  // The nodelet runs BioBin on its own threads (ParallelArena, issue #21); every loop's split must not
+  // change a bit of the map, against one thread and against OpenCV's own pool.
+  const EstimatedPlansOnly estimated;
+  const std::string dir = sharedData() + "/stereo/middlebury-v2-masks/cones";
+  ASSERT_TRUE(fs::is_directory(dir)) << dir << " not found (set BIOVISION_SHARED)";
+  const StereoScene s = MiddleburyDataset::loadScene(dir);
+  const int opencv_threads = cv::getNumThreads();
+  for (const std::string aggregation : {"semi_global", "iterative"})
+  {
+    BioBinParameters p;
+    p.max_disparity = s.max_disparity;
+    p.aggregation = aggregation;
+    p.fill_occlusions = true;  // its loops too
+    p.median_filter = true;
+    cv::setNumThreads(1);
+    const cv::Mat one = BioBinMatcher(p).compute(s.left, s.right).disparity;
+    cv::setNumThreads(opencv_threads);
+    const cv::Mat pool = BioBinMatcher(p).compute(s.left, s.right).disparity;
+    cv::Mat own;
+    biovision_common::ParallelArena arena(2);
+    BioBinMatcher matcher(p);
+    arena.run([&] { own = matcher.compute(s.left, s.right).disparity; });
+    ASSERT_EQ(own.size(), one.size());
+    // memcmp: NaN-free maps (invalid is -1), so equal bytes = equal values.
+    EXPECT_EQ(0, std::memcmp(own.data, one.data, one.total() * one.elemSize())) << aggregation << ": own vs 1 thread";
+    EXPECT_EQ(0, std::memcmp(pool.data, one.data, one.total() * one.elemSize())) << aggregation << ": pool vs 1";
+  }
 }
 
 // The spatial filter's rows on 32-bit masks (every cost path of this CPU) equal its scalar formulation bit

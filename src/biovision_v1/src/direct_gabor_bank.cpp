@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "biovision_v1/gabor_kernel.hpp"
+#include "biovision_common/parallel_arena.hpp"
 
 namespace biovision_v1
 {
@@ -29,7 +30,7 @@ std::vector<ScaleResponses> DirectGaborBank::compute(const cv::Mat& gray) const
     out[s].odd.resize(n_orient);
   }
   // One job per kernel (even and odd separately), as a filter bank user would run it.
-  cv::parallel_for_(cv::Range(0, 2 * n_scales * n_orient), [&](const cv::Range& range) {
+  biovision_common::parallelFor(cv::Range(0, 2 * n_scales * n_orient), [&](const cv::Range& range) {
     for (int job = range.start; job < range.end; ++job)
     {
       const int s = job / (2 * n_orient), i = (job / 2) % n_orient;

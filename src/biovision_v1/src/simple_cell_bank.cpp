@@ -9,6 +9,7 @@
 
 #include "biovision_v1/fourier_transform.hpp"
 #include "biovision_v1/gabor_kernel.hpp"
+#include "biovision_common/parallel_arena.hpp"
 
 namespace biovision_v1
 {
@@ -217,7 +218,7 @@ std::vector<cv::Mat> SimpleCellBank::imageSpectra(const cv::Mat& gray) const
     padded_images_.resize(n_scales);
     image_spectra_.resize(n_scales);
   }
-  cv::parallel_for_(cv::Range(0, static_cast<int>(sources.size())), [&](const cv::Range& range) {
+  biovision_common::parallelFor(cv::Range(0, static_cast<int>(sources.size())), [&](const cv::Range& range) {
     for (int k = range.start; k < range.end; ++k)
     {
       const int s = sources[k];
@@ -263,7 +264,7 @@ std::vector<std::vector<std::vector<cv::Mat>>> SimpleCellBank::computeOddPairsBa
     image_spectra_.resize(n_slots);
   }
   const int n_sources = static_cast<int>(sources.size());
-  cv::parallel_for_(cv::Range(0, n_images * n_sources), [&](const cv::Range& range) {
+  biovision_common::parallelFor(cv::Range(0, n_images * n_sources), [&](const cv::Range& range) {
     for (int job = range.start; job < range.end; ++job)
     {
       const int i = job / n_sources, s = sources[job % n_sources];
@@ -275,7 +276,7 @@ std::vector<std::vector<std::vector<cv::Mat>>> SimpleCellBank::computeOddPairsBa
       n_images, std::vector<std::vector<cv::Mat>>(n_scales, std::vector<cv::Mat>(n_pairs)));
   if (static_cast<int>(pair_products_.size()) < n_slots * n_pairs)
     pair_products_.resize(size_t(n_slots) * n_pairs);
-  cv::parallel_for_(cv::Range(0, n_slots * n_pairs), [&](const cv::Range& range) {
+  biovision_common::parallelFor(cv::Range(0, n_slots * n_pairs), [&](const cv::Range& range) {
     for (int job = range.start; job < range.end; ++job)
     {
       const int i = job / (n_scales * n_pairs), s = job / n_pairs % n_scales, pair = job % n_pairs;
@@ -300,7 +301,7 @@ std::vector<std::vector<cv::Mat>> SimpleCellBank::computeOdd(const cv::Mat& gray
   const int n_pairs = (n_orient + 1) / 2;
   std::vector<std::vector<cv::Mat>> out(pairs.size(), std::vector<cv::Mat>(n_orient));
   // The splits in parallel too, as they were inside the transforms' loop.
-  cv::parallel_for_(cv::Range(0, static_cast<int>(pairs.size()) * n_pairs), [&](const cv::Range& range) {
+  biovision_common::parallelFor(cv::Range(0, static_cast<int>(pairs.size()) * n_pairs), [&](const cv::Range& range) {
     for (int job = range.start; job < range.end; ++job)
     {
       const int s = job / n_pairs, pair = job % n_pairs;
@@ -336,7 +337,7 @@ std::vector<ScaleResponses> SimpleCellBank::compute(const cv::Mat& gray)
   // most of the recognition pyramid's page faults); a response the caller still holds is never reused.
   folded_.resize(size_t(n_scales) * n_orient);
   kept_responses_.resize(size_t(n_scales) * n_orient * 2);
-  cv::parallel_for_(cv::Range(0, n_scales * n_orient), [&](const cv::Range& range) {
+  biovision_common::parallelFor(cv::Range(0, n_scales * n_orient), [&](const cv::Range& range) {
     for (int job = range.start; job < range.end; ++job)
     {
       const int s = job / n_orient, i = job % n_orient;

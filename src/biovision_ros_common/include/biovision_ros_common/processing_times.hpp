@@ -13,7 +13,8 @@ namespace biovision_ros_common
 /// callback that does its work with a ScopedProcessingTimer, the benchmark reads snapshot() before and
 /// after a run. CPU time is the calling thread's (CLOCK_THREAD_CPUTIME_ID), so work a stage hands to
 /// other threads (OpenCV's parallel_for_ pool) is counted only when that pool runs on the calling thread
-/// (cv::setNumThreads(1), as loop_bench does). Thread-safe; costs one mutex per processed input.
+/// (cv::setNumThreads(1), as loop_bench does), plus what the stage adds with addCpuSeconds (its own
+/// ParallelArena's helper threads). Thread-safe; costs one mutex per processed input.
 class ProcessingTimes
 {
 public:
@@ -43,11 +44,14 @@ class ScopedProcessingTimer
 public:
   explicit ScopedProcessingTimer(std::string stage);
   ~ScopedProcessingTimer();
+  /// Adds CPU the stage spent on other threads in this scope ([s], e.g. its ParallelArena's helpers).
+  void addCpuSeconds(double seconds) { extra_cpu_seconds_ += seconds; }
   ScopedProcessingTimer(const ScopedProcessingTimer&) = delete;
   ScopedProcessingTimer& operator=(const ScopedProcessingTimer&) = delete;
 
 private:
   std::string stage_;
   timespec cpu_start_{}, wall_start_{};
+  double extra_cpu_seconds_ = 0.0;
 };
 }  // namespace biovision_ros_common

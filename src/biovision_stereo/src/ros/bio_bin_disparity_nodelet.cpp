@@ -63,11 +63,16 @@ void BioBinDisparityNodelet::onInitNodelet()
   pnh.param("approximate_sync", approximate, false);
   pnh.param("use_color", use_color_, true);
   pnh.param("queue_size", queue_size_, 5);
+  int threads = 0;
+  pnh.param("threads", threads, 0);
   try
   {
     max_input_pixels_ = biovision_ros_common::ImageMessageConverter::maxInputPixels(pnh);
     if (queue_size_ < 1)
       throw std::invalid_argument("~queue_size = " + std::to_string(queue_size_) + " must be >= 1");
+    if (threads < 0)
+      throw std::invalid_argument("~threads = " + std::to_string(threads) + " must be >= 0 (0: one per core)");
+    arena_ = std::make_unique<biovision_common::ParallelArena>(threads);
   }
   catch (const std::invalid_argument& e)
   {
@@ -152,7 +157,7 @@ void BioBinDisparityNodelet::pairCallback(const sensor_msgs::ImageConstPtr& left
                                           const sensor_msgs::ImageConstPtr& right,
                                           const sensor_msgs::CameraInfoConstPtr& right_info)
 {
-  const biovision_ros_common::ScopedProcessingTimer timer(getName());  // loop_bench's CPU per stage
+  biovision_ros_common::ScopedProcessingTimer timer(getName());  // loop_bench's CPU per stage
   ++pairs_;
   std::lock_guard<std::mutex> lock(matcher_mutex_);
   image_geometry::StereoCameraModel model;
@@ -191,7 +196,10 @@ void BioBinDisparityNodelet::pairCallback(const sensor_msgs::ImageConstPtr& left
     const auto start = std::chrono::steady_clock::now();
     // Size first: an oversized pair is refused before either image is converted.
     const cv::Mat left_image = toMatcherInput(*left, "left", max_input_pixels_);
-    result = matcher_->compute(left_image, toMatcherInput(*right, "right", max_input_pixels_));
+    const cv::Mat right_image = toMatcherInput(*right, "right", max_input_pixels_);
+    const double helper_cpu = arena_->helperCpuSeconds();
+    arena_->run([&] { result = matcher_->compute(left_image, right_image); });
+    timer.addCpuSeconds(arena_->helperCpuSeconds() - helper_cpu);  // the arena's other threads
     last_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     // A smaller frame after a larger one: the matcher has freed the larger one's buffers; hand glibc's
     // freed heap back too (after one 1920x1080 pair the node kept ~590 MB more while matching 320x240).
@@ -263,6 +271,7 @@ void BioBinDisparityNodelet::details(diagnostic_updater::DiagnosticStatusWrapper
   std::lock_guard<std::mutex> lock(matcher_mutex_);
   status.add("last processing time [ms]", last_ms_);
   status.add("last valid fraction", last_valid_fraction_);
+  status.add("threads", arena_ ? arena_->threads() : 0);
   if (matcher_)
   {
     const auto& t = matcher_->lastTimes();

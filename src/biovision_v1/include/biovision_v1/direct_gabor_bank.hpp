@@ -17,7 +17,7 @@ class DirectGaborBank
 public:
   explicit DirectGaborBank(const GaborParameters& parameters);
 
-  /// Filters all kernels; parallel over kernels with cv::parallel_for_.
+  /// Filters all kernels; parallel over kernels with biovision_common::parallelFor (a ParallelArena when the caller runs in one).
   std::vector<ScaleResponses> compute(const cv::Mat& gray) const;
 
   /// The samples of a full-resolution response at the grid of `grid` (every decimation-th pixel).

@@ -21,6 +21,7 @@
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
 
+#include "biovision_common/parallel_arena.hpp"
 #include "biovision_stereo/bio_bin_matcher.hpp"
 #include "biovision_ros_common/lazy_nodelet.hpp"
 #include "biovision_ros_common/nodelet_diagnostics.hpp"
@@ -38,6 +39,8 @@ namespace biovision_stereo
 /// principal points differ; pixels whose adjusted disparity would be negative are marked invalid.
 /// Frames larger than ~max_input_pixels (width x height) are refused with an ERROR diagnostic, before any
 /// pixel is copied (bounded memory per frame).
+/// BioBin runs on its own ~threads worker threads (biovision_common::ParallelArena), whatever the process's
+/// OpenCV thread count: in one nodelet manager it is the frame's critical path (issue #21).
 class BioBinDisparityNodelet : public biovision_ros_common::LazyNodelet
 {
 public:
@@ -67,7 +70,8 @@ private:
   image_transport::Publisher obstacle_pub_;
   bool use_color_ = true;
   int queue_size_ = 5;
-  size_t max_input_pixels_ = 0;  // ~max_input_pixels
+  size_t max_input_pixels_ = 0;                             // ~max_input_pixels
+  std::unique_ptr<biovision_common::ParallelArena> arena_;  // ~threads
 
   std::mutex matcher_mutex_;
   std::unique_ptr<BioBinMatcher> matcher_;

@@ -706,8 +706,9 @@ int main(int argc, char** argv)
       "frames_per_s: frames published per wall second while at most in_flight were unfinished (a stage that drops "
       "a frame covers it with a later one); complete_frames_per_s: frames that got every output. Per stage: "
       "latency from the arrival of the stage's input (the rectified image; for the end to end row, the frame's "
-      "publication) [ms]; cpu_ms_per_input: CPU of the nodelet's callback thread per input "
-      "(ScopedProcessingTimer; OpenCV's parallel_for_ on that thread with opencv_threads 1); '-' = Debian's "
+      "publication) [ms]; cpu_ms_per_input: CPU of the nodelet's callback thread per input, plus its own worker "
+      "threads' (BioBin's ParallelArena) (ScopedProcessingTimer; OpenCV's parallel_for_ on that thread with "
+      "opencv_threads 1); '-' = Debian's "
       "nodelets (debayer, rectify, SGBM), not instrumented: their CPU is in unattributed_cpu_ms_per_frame. "
       "simd: the instruction set each of our SIMD stages ran on this CPU.";
   if (!json_path.empty())

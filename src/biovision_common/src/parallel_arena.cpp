@@ -4,11 +4,13 @@
 #include <atomic>
 #include <cmath>
 #include <ctime>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <thread>
 
 #include <tbb/blocked_range.h>
+#include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -18,6 +20,9 @@ struct ParallelArena::Impl
 {
   int threads = 1;
   std::unique_ptr<tbb::task_arena> arena;  // null when threads == 1
+  // One run() at a time: a second caller of task_arena::execute without a free slot has its functor queued
+  // and run by whichever thread of the arena takes it, possibly inside the first caller's loop.
+  std::mutex run_mutex;
   std::atomic<long long> helper_cpu_ns{0};
 };
 
@@ -53,9 +58,15 @@ ParallelArena::ParallelArena(int threads) : impl_(std::make_unique<Impl>())
 {
   if (threads < 0)
     throw std::invalid_argument("ParallelArena: threads " + std::to_string(threads) + " must be >= 0");
-  impl_->threads = threads > 0 ? threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  // TBB's default concurrency respects the process's CPU affinity; its worker pool never grows beyond it,
+  // so more threads than that would only be asked for, never given.
+  const int available = std::max(1, tbb::info::default_concurrency());
+  impl_->threads = threads > 0 ? std::min(threads, available) : available;
   if (impl_->threads > 1)
+  {
     impl_->arena = std::make_unique<tbb::task_arena>(impl_->threads);
+    impl_->arena->initialize();  // allocation errors here, not at the first frame
+  }
 }
 
 ParallelArena::~ParallelArena() = default;
@@ -67,12 +78,13 @@ int ParallelArena::threads() const
 
 void ParallelArena::run(const std::function<void()>& f)
 {
-  if (!impl_->arena)
+  if (!impl_->arena || loop_depth > 0)
   {
-    f();
+    f();  // no arena, or inside a loop body: loops in f stay what they would be here (serial if nested)
     return;
   }
-  // The thread-locals are set inside execute(): f runs on whichever thread the arena gives it.
+  const std::lock_guard<std::mutex> lock(impl_->run_mutex);
+  // The thread-locals are set inside execute(), on the thread that runs f (the caller: its slot is free).
   impl_->arena->execute([&] {
     const ScopedValue<Impl*> arena(current_arena, impl_.get());
     const ScopedValue<int> depth(loop_depth, 0);
@@ -87,11 +99,12 @@ double ParallelArena::helperCpuSeconds() const
 
 void parallelFor(const cv::Range& range, const std::function<void(const cv::Range&)>& body, double nstripes)
 {
-  if (range.empty())
+  const long long length = static_cast<long long>(range.end) - range.start;
+  if (length == 0)
     return;
-  if (loop_depth > 0)
+  if (length < 0 || loop_depth > 0)
   {
-    body(range);  // nested: serially, as OpenCV does
+    body(range);  // an inverted range once, as OpenCV does; nested: serially, as OpenCV does
     return;
   }
   ParallelArena::Impl* arena = current_arena;
@@ -100,23 +113,30 @@ void parallelFor(const cv::Range& range, const std::function<void(const cv::Rang
     cv::parallel_for_(range, body, nstripes);
     return;
   }
-  const long long length = range.end - range.start;
-  const long long stripes = nstripes <= 0.0 ? length : std::clamp<long long>(std::llround(nstripes), 1LL, length);
+  // OpenCV's stripe count: <= 0 (or NaN) one per element, else clamped to [1, length] before rounding.
+  const unsigned long long stripes = !(nstripes > 0.0)
+                                         ? static_cast<unsigned long long>(length)
+                                         : static_cast<unsigned long long>(std::max(
+                                               1.0, std::round(std::min(nstripes, static_cast<double>(length)))));
+  const unsigned long long span = static_cast<unsigned long long>(length);
+  const auto offset = [&](unsigned long long stripe) {
+    // stripe * span / stripes without overflow: both are below 2^32 for int ranges.
+    return static_cast<int>(static_cast<long long>(range.start) + static_cast<long long>(stripe * span / stripes));
+  };
   const std::thread::id caller = std::this_thread::get_id();
-  tbb::parallel_for(tbb::blocked_range<long long>(0, stripes), [&](const tbb::blocked_range<long long>& part) {
-    const cv::Range r(range.start + static_cast<int>(part.begin() * length / stripes),
-                      part.end() >= stripes ? range.end
-                                            : range.start + static_cast<int>(part.end() * length / stripes));
-    if (r.empty())
-      return;
-    const bool helper = std::this_thread::get_id() != caller;
-    const long long start = helper ? threadCpuNanoseconds() : 0;
-    {
-      const ScopedValue<int> depth(loop_depth, loop_depth + 1);
-      body(r);
-    }
-    if (helper)
-      arena->helper_cpu_ns.fetch_add(threadCpuNanoseconds() - start, std::memory_order_relaxed);
-  });
+  tbb::parallel_for(tbb::blocked_range<unsigned long long>(0, stripes),
+                    [&](const tbb::blocked_range<unsigned long long>& part) {
+                      const cv::Range r(offset(part.begin()), part.end() >= stripes ? range.end : offset(part.end()));
+                      if (r.empty())
+                        return;
+                      const bool helper = std::this_thread::get_id() != caller;
+                      const long long start = helper ? threadCpuNanoseconds() : 0;
+                      {
+                        const ScopedValue<int> depth(loop_depth, loop_depth + 1);
+                        body(r);
+                      }
+                      if (helper)
+                        arena->helper_cpu_ns.fetch_add(threadCpuNanoseconds() - start, std::memory_order_relaxed);
+                    });
 }
 }  // namespace biovision_common

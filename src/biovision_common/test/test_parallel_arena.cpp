@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <mutex>
 #include <set>
 #include <stdexcept>
@@ -54,11 +55,80 @@ TEST(ParallelArena, CoversTheRangeOnceInsideAndOutside)
   single.run([] { expectEachIndexOnce(0, 17); });
 }
 
-TEST(ParallelArena, ThreadsDefaultToTheHardwareAndRefuseNegative)
+TEST(ParallelArena, ThreadsAreClampedToTheCpusAndRefuseNegative)
 {
-  EXPECT_EQ(ParallelArena(0).threads(), std::max(1, static_cast<int>(std::thread::hardware_concurrency())));
-  EXPECT_EQ(ParallelArena(3).threads(), 3);
+  const int cpus = ParallelArena(0).threads();
+  EXPECT_GE(cpus, 1);
+  EXPECT_LE(cpus, std::max(1, static_cast<int>(std::thread::hardware_concurrency())));
+  EXPECT_EQ(ParallelArena(1).threads(), 1);
+  EXPECT_EQ(ParallelArena(1000).threads(), cpus);  // TBB's pool never grows beyond them
   EXPECT_THROW(ParallelArena(-1), std::invalid_argument);
+}
+
+TEST(ParallelArena, AnInvertedRangeGoesToTheBodyOnce)
+{
+  ParallelArena arena(2);
+  for (bool inside : {false, true})
+  {
+    int calls = 0;
+    cv::Range seen;
+    const auto loop = [&] {
+      parallelFor(
+          cv::Range(5, 2),
+          [&](const cv::Range& r) {
+            ++calls;
+            seen = r;
+          },
+          3.0);
+    };
+    if (inside)
+      arena.run(loop);
+    else
+      loop();
+    EXPECT_EQ(calls, 1) << (inside ? "inside" : "outside");
+    EXPECT_EQ(seen, cv::Range(5, 2));
+  }
+}
+
+TEST(ParallelArena, CallersFromSeveralThreadsTakeTurns)
+{
+  ParallelArena arena(2);
+  std::atomic<int> inside{0}, most{0}, failures{0};
+  std::vector<std::thread> callers;
+  for (int c = 0; c < 3; ++c)
+    callers.emplace_back([&] {
+      for (int round = 0; round < 20; ++round)
+        arena.run([&] {
+          const int now = ++inside;
+          most = std::max(most.load(), now);
+          std::this_thread::sleep_for(std::chrono::microseconds(300));  // time for another caller to come in
+          std::vector<std::atomic<int>> visits(97);
+          parallelFor(cv::Range(0, 97), [&](const cv::Range& r) {
+            for (int i = r.start; i < r.end; ++i)
+              ++visits[i];
+          });
+          for (auto& v : visits)
+            failures += v != 1;
+          --inside;
+        });
+    });
+  for (auto& t : callers)
+    t.join();
+  EXPECT_EQ(failures, 0);
+  EXPECT_EQ(most, 1);  // one run() at a time
+}
+
+TEST(ParallelArena, RunInsideALoopBodyJustCallsF)
+{
+  ParallelArena arena(2);
+  std::atomic<int> inner_calls{0};
+  arena.run([&] {
+    parallelFor(cv::Range(0, 4), [&](const cv::Range& outer) {
+      for (int i = outer.start; i < outer.end; ++i)
+        arena.run([&] { parallelFor(cv::Range(0, 10), [&](const cv::Range&) { ++inner_calls; }); });
+    });
+  });
+  EXPECT_EQ(inner_calls, 4);  // each inner loop one serial call, and no deadlock on the run() lock
 }
 
 TEST(ParallelArena, NestedLoopsRunSeriallyOnTheirThread)

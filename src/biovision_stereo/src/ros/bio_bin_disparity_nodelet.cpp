@@ -71,8 +71,11 @@ void BioBinDisparityNodelet::onInitNodelet()
     if (queue_size_ < 1)
       throw std::invalid_argument("~queue_size = " + std::to_string(queue_size_) + " must be >= 1");
     if (threads < 0)
-      throw std::invalid_argument("~threads = " + std::to_string(threads) + " must be >= 0 (0: one per core)");
+      throw std::invalid_argument("~threads = " + std::to_string(threads) + " must be >= 0 (0: every CPU)");
     arena_ = std::make_unique<biovision_common::ParallelArena>(threads);
+    if (threads > 0 && arena_->threads() != threads)
+      NODELET_WARN("~threads = %d: this process may use %d CPUs; BioBin runs on %d threads", threads, arena_->threads(),
+                   arena_->threads());
   }
   catch (const std::invalid_argument& e)
   {
@@ -198,7 +201,15 @@ void BioBinDisparityNodelet::pairCallback(const sensor_msgs::ImageConstPtr& left
     const cv::Mat left_image = toMatcherInput(*left, "left", max_input_pixels_);
     const cv::Mat right_image = toMatcherInput(*right, "right", max_input_pixels_);
     const double helper_cpu = arena_->helperCpuSeconds();
-    arena_->run([&] { result = matcher_->compute(left_image, right_image); });
+    try
+    {
+      arena_->run([&] { result = matcher_->compute(left_image, right_image); });
+    }
+    catch (...)
+    {
+      timer.addCpuSeconds(arena_->helperCpuSeconds() - helper_cpu);  // a refused pair's CPU counts too
+      throw;
+    }
     timer.addCpuSeconds(arena_->helperCpuSeconds() - helper_cpu);  // the arena's other threads
     last_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     // A smaller frame after a larger one: the matcher has freed the larger one's buffers; hand glibc's

@@ -39,8 +39,8 @@ namespace biovision_stereo
 /// principal points differ; pixels whose adjusted disparity would be negative are marked invalid.
 /// Frames larger than ~max_input_pixels (width x height) are refused with an ERROR diagnostic, before any
 /// pixel is copied (bounded memory per frame).
-/// BioBin runs on its own ~threads worker threads (biovision_common::ParallelArena), whatever the process's
-/// OpenCV thread count: in one nodelet manager it is the frame's critical path (issue #21).
+/// BioBin runs in a task arena of ~threads (biovision_common::ParallelArena) on TBB's worker pool, whatever
+/// the process's OpenCV thread count: in one nodelet manager it is the frame's critical path (issue #21).
 class BioBinDisparityNodelet : public biovision_ros_common::LazyNodelet
 {
 public:

@@ -16,6 +16,7 @@
 #include "biovision_ros_common/image_message_converter.hpp"
 #include "biovision_ros_common/input_check.hpp"
 #include "biovision_ros_common/processing_times.hpp"
+#include "biovision_ros_common/typed_parameter.hpp"
 #include "biovision_stereo/ros/bio_bin_config.hpp"
 #include "biovision_v1/wavelength_list.hpp"
 
@@ -63,10 +64,10 @@ void BioBinDisparityNodelet::onInitNodelet()
   pnh.param("approximate_sync", approximate, false);
   pnh.param("use_color", use_color_, true);
   pnh.param("queue_size", queue_size_, 5);
-  int threads = 0;
-  pnh.param("threads", threads, 0);
+  int threads = 0;  // ~threads: 0 = every CPU
   try
   {
+    biovision_ros_common::readTypedParameter(pnh, "threads", threads);  // a double or string is refused
     max_input_pixels_ = biovision_ros_common::ImageMessageConverter::maxInputPixels(pnh);
     if (queue_size_ < 1)
       throw std::invalid_argument("~queue_size = " + std::to_string(queue_size_) + " must be >= 1");

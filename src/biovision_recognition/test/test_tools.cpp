@@ -113,3 +113,36 @@ TEST(SyntheticPair, RecordsTheViewChangeItMade)
   std::mt19937 again(7);
   EXPECT_FALSE(syntheticPair(image, "plain", 4.0, false, again).synthetic->blur_sigma > 0);
 }
+
+TEST(DescriptorSplit, FitAndValidationPartitionTheDevSourcesAndNeverTouchTheHeldOutOnes)
+{
+  // The Middlebury scenes and a range of made-up collection sources: every source in exactly one of
+  // heldout, fit, validation; dev = fit + validation; "all" takes every source.
+  std::vector<std::string> sources{"Aloe",  "Art",   "Baby1",  "Baby2", "Bowling1",   "Cones",
+                                   "Teddy", "Venus", "Rocks2", "Wood1", "Flowerpots", "RubberWhale"};
+  for (int i = 0; i < 400; ++i)
+    sources.push_back("source_" + std::to_string(i));
+  int counts[3] = {0, 0, 0};
+  for (const auto& s : sources)
+  {
+    const bool heldout = inSourcePart(s, "heldout"), fit = inSourcePart(s, "fit");
+    const bool validation = inSourcePart(s, "validation");
+    EXPECT_EQ(1, heldout + fit + validation) << s;
+    EXPECT_EQ(fit || validation, inSourcePart(s, "dev")) << s;
+    EXPECT_TRUE(inSourcePart(s, "all"));
+    ++counts[heldout ? 0 : (fit ? 1 : 2)];
+  }
+  EXPECT_TRUE(inSourcePart("aloe", "heldout"));  // forced: opencv-doc ships copies
+  EXPECT_TRUE(inSourcePart("RubberWhale", "heldout"));
+  // Half held out, a quarter of the rest for validation, within a generous binomial margin.
+  const double n = static_cast<double>(sources.size());
+  EXPECT_NEAR(counts[0] / n, 0.5, 0.08);
+  EXPECT_NEAR(counts[2] / static_cast<double>(counts[1] + counts[2]), 1.0 / kValidationFolds, 0.08);
+  EXPECT_THROW(inSourcePart("Art", "train"), std::invalid_argument);
+  // The old name-order parts still alternate, whatever the source.
+  EXPECT_TRUE(inPart(0, "train", "x"));
+  EXPECT_TRUE(inPart(1, "test", "x"));
+  EXPECT_FALSE(inPart(1, "train", "x"));
+  EXPECT_EQ(collectionPart("fit", "dev"), "fit");
+  EXPECT_EQ(collectionPart("train", "dev"), "dev");
+}

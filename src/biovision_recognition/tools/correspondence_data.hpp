@@ -55,13 +55,40 @@ inline const biovision_common::SourceSplit& descriptorSplit()
   return split;
 }
 
+/// The dev part is split again by source into this many folds; fold 0 is the validation part, on which a
+/// training variant is chosen, so that the held-out part decides nothing (issue #22).
+constexpr int kValidationFolds = 4;
+
+/// Whether `source` (a scene, sequence or collection source) is in `part` of descriptorSplit(): "heldout"
+/// (evaluation only), "dev" (training), its two disjoint parts "fit" (variants train here) and "validation"
+/// (variants are compared here), or "all". Throws std::invalid_argument for another part.
+inline bool inSourcePart(const std::string& source, const std::string& part)
+{
+  if (part == "all")
+    return true;
+  if (part != "heldout" && part != "dev" && part != "fit" && part != "validation")
+    throw std::invalid_argument("inSourcePart: unknown part '" + part + "'");
+  const bool heldout = descriptorSplit().isTest(source);
+  if (part == "heldout" || heldout)
+    return part == "heldout" && heldout;
+  const bool validation = descriptorSplit().fold(source, kValidationFolds) == 0;
+  return part == "dev" || (part == "validation") == validation;
+}
+
+/// The part of the image collections that goes with `part` of the stereo scenes: the same part for a split
+/// by source, `otherwise` for the old name-order parts ("train", "test") and "all".
+inline std::string collectionPart(const std::string& part, const std::string& otherwise)
+{
+  return part == "dev" || part == "heldout" || part == "fit" || part == "validation" ? part : otherwise;
+}
+
 /// Which part of a dataset. "train"/"test": scenes in name order alternate train, test, train, ... (the
-/// committed models up to session 4); "dev"/"heldout": descriptorSplit() by scene name; "all".
+/// committed models up to session 4); otherwise inSourcePart() by scene name.
 inline bool inPart(size_t index, const std::string& part, const std::string& source = std::string())
 {
-  if (part == "dev" || part == "heldout")
-    return descriptorSplit().isTest(source) == (part == "heldout");
-  return part == "all" || (part == "train" && index % 2 == 0) || (part == "test" && index % 2 == 1);
+  if (part == "train" || part == "test")
+    return index % 2 == (part == "test" ? 1u : 0u);
+  return inSourcePart(source, part);
 }
 
 inline cv::Mat readHomography(const std::string& path)
@@ -185,8 +212,7 @@ struct SourceImage
 
 /// Every image (png, jpg, ppm, pgm) under each folder, grouped by source: a file directly in the folder
 /// is its own source (its stem), a subfolder is one source (a sequence, a scene, an object). At most
-/// `per_source` images per source, evenly spaced in name order. Only sources in `part` of
-/// descriptorSplit() ("dev", "heldout", "all"). Paths under /usr/share/doc/opencv-doc are refused: those
+/// `per_source` images per source, evenly spaced in name order. Only sources in `part` (inSourcePart()). Paths under /usr/share/doc/opencv-doc are refused: those
 /// images are evaluation material. Throws std::runtime_error naming a folder that does not exist.
 inline std::vector<SourceImage> listSourceImages(const std::vector<std::string>& folders, int per_source,
                                                  const std::string& part)
@@ -215,8 +241,7 @@ inline std::vector<SourceImage> listSourceImages(const std::vector<std::string>&
     }
     for (auto& [source, files] : by_source)
     {
-      const bool heldout = descriptorSplit().isTest(source);
-      if ((part == "dev" && heldout) || (part == "heldout" && !heldout))
+      if (!inSourcePart(source, part))
         continue;
       std::sort(files.begin(), files.end());
       const size_t n = std::min(files.size(), static_cast<size_t>(std::max(1, per_source)));

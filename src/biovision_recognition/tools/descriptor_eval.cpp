@@ -69,8 +69,10 @@ Options parseOptions(int argc, char** argv)
   app.add_option("--stereo", o.stereo, "folder of Middlebury scenes");
   app.add_option("--part", o.part,
                  "part of the stereo scenes: test/train alternate in name order (models up to session 4); heldout/dev: "
-                 "the split by source (descriptorSplit)")
-      ->check(CLI::IsMember({"test", "train", "all", "heldout", "dev"}));
+                 "the split by source (descriptorSplit); fit/validation: the dev part split again (choose a variant "
+                 "trained on fit on validation). --images take the same part of the split by source (heldout for "
+                 "test/train/all)")
+      ->check(CLI::IsMember({"test", "train", "all", "heldout", "dev", "fit", "validation"}));
   app.add_option("--homography-pairs", o.homography_pairs,
                  "real image pairs with a known homography, A:B:H comma-separated (H: OpenCV .xml or 9 numbers), e.g. "
                  "opencv-doc's graf1.png:graf3.png:H1to3p.xml")
@@ -82,7 +84,8 @@ Options parseOptions(int argc, char** argv)
       ->check(CLI::ExistingFile);
   app.add_option("--images", o.images,
                  "image collections, comma-separated: one synthetic view (tilt <= 4, photometric change) of up to "
-                 "--per-source images of each held-out source (descriptorSplit)")
+                 "--per-source images of each source in the --part of the split by source (heldout unless "
+                 "dev/fit/validation)")
       ->delimiter(',')
       ->check(CLI::ExistingDirectory);
   app.add_option("--per-source", o.per_source, "--images: images per held-out source")
@@ -293,14 +296,16 @@ Evaluation evaluate(const Options& o, const Models& ours)
   if (!o.images.empty())
   {
     std::mt19937 rng(101);
-    for (const auto& image : listSourceImages(o.images, o.per_source, "heldout"))
+    for (const auto& image : listSourceImages(o.images, o.per_source, collectionPart(o.part, "heldout")))
     {
       const cv::Mat bgr = cv::imread(image.path, cv::IMREAD_COLOR);
       // AKAZE builds an octave only while it stays >= 80 x 40 px; the keypoints' scales need 3 of them.
       if (bgr.empty() || bgr.cols < 400 || bgr.rows < 300)
         continue;
-      pairs.push_back(syntheticPair(
-          bgr, "heldout/" + image.source + "/" + std::filesystem::path(image.path).stem().string(), 4.0, true, rng));
+      pairs.push_back(syntheticPair(bgr,
+                                    collectionPart(o.part, "heldout") + "/" + image.source + "/" +
+                                        std::filesystem::path(image.path).filename().string(),
+                                    4.0, true, rng));
     }
   }
   for (const auto& path : o.tilt_images)
@@ -443,20 +448,29 @@ nlohmann::ordered_json report(const Options& o, const Evaluation& evaluation)
       "fpr95 = false-positive rate at exactly 95% recall (ties at the threshold distance shared in proportion, i.e. "
       "the ROC curve interpolated); fpr95_at_threshold = at the first distance whose recall reaches 95%, whole tie "
       "charged; lower is better. Goal: the lowest fpr95 of the binary descriptors (sift is float, for reference).";
-  if (o.part == "heldout")
+  if (!o.stereo.empty() && o.part == "heldout")
     notes +=
         " Stereo scenes: the held-out part of the split by source (none trained on by the models made with "
         "--part dev; the session-4 models trained on the even scenes in name order, so some held-out scenes "
         "were theirs).";
-  else if (o.part == "test")
+  else if (!o.stereo.empty() && o.part == "validation")
+    notes += " Stereo scenes: the validation part of the dev scenes (fold 0 of " + std::to_string(kValidationFolds) +
+             " by source; the models compared on it trained with --part fit, the other folds).";
+  else if (!o.stereo.empty() && o.part == "test")
     notes += " Stereo scenes: the odd scenes in name order (the session-4 models trained on the even ones).";
+  if (!o.images.empty())
+    notes +=
+        " Image collections: one synthetic view (ASIFT tilt <= 4 with perspective, photometric change) of images "
+        "of their " +
+        collectionPart(o.part, "heldout") + " sources" +
+        (collectionPart(o.part, "heldout") == "heldout" ? " (never trained on by models made with --part dev)." : ".");
   if (!o.shaped_peers.empty())
     notes +=
         " +shape rows: the peer run on each keypoint's patch resampled by our affine shape adaptation (a hybrid made "
         "to ask whether a gain is the adaptation's or the descriptor's, not the peer as OpenCV ships it; its time "
         "includes one warp and one image per keypoint).";
   results["notes"] = notes;
-  if (o.part == "heldout" || o.part == "dev")
+  if (collectionPart(o.part, "") == o.part)
   {
     std::vector<std::string> scenes;
     if (!o.stereo.empty())
@@ -465,6 +479,18 @@ nlohmann::ordered_json report(const Options& o, const Evaluation& evaluation)
           scenes.push_back(e.path().filename().string());
     std::sort(scenes.begin(), scenes.end());
     results["split"] = descriptorSplit().describe(scenes);
+    results["split"]["part"] = o.part;
+    if (o.part == "fit" || o.part == "validation")
+    {
+      results["split"]["validation_folds"] = kValidationFolds;
+      for (const char* part : {"fit", "validation"})
+      {
+        results["split"][part] = nlohmann::ordered_json::array();
+        for (const auto& scene : scenes)
+          if (inSourcePart(scene, part))
+            results["split"][part].push_back(scene);
+      }
+    }
   }
   if (!evaluation.by_condition.empty())
   {

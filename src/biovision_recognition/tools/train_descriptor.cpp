@@ -62,11 +62,12 @@ Options parseOptions(int argc, char** argv)
   app.add_option("--sequence", o.sequence, "HPatches/Oxford sequence (homographies give the pairs)");
   app.add_option("--part", o.part,
                  "stereo scenes: train/test alternate in name order (models up to session 4); dev/heldout: the split "
-                 "by source (descriptorSplit)")
-      ->check(CLI::IsMember({"train", "test", "all", "dev", "heldout"}));
+                 "by source (descriptorSplit); fit/validation: the dev part split again by source (train a variant on "
+                 "fit, compare on validation). --images take the same part of the split by source (dev for train/test)")
+      ->check(CLI::IsMember({"train", "test", "all", "dev", "heldout", "fit", "validation"}));
   app.add_option("--images", o.images,
                  "image collections, comma-separated (a file = one source, a subfolder = one source): synthetic "
-                 "pairs of their dev sources (never opencv-doc)")
+                 "pairs of their sources in --part (never opencv-doc)")
       ->delimiter(',')
       ->check(CLI::ExistingDirectory);
   app.add_option("--per-source", o.per_source, "--images: at most this many images per source, evenly spaced")
@@ -181,7 +182,8 @@ int main(int argc, char** argv)
     std::vector<std::string> sources;
     if (!o.images.empty())
     {
-      const auto images = listSourceImages(o.images, o.per_source, "dev");
+      const std::string part = collectionPart(o.part, "dev");
+      const auto images = listSourceImages(o.images, o.per_source, part);
       std::mt19937 rng(23);
       for (const auto& image : images)
       {
@@ -198,7 +200,7 @@ int main(int argc, char** argv)
                                         o.synthetic_tilt, o.photometric, rng));
       }
       std::cerr << "synthetic pairs: " << pairs.size() - warped_pairs << " from " << images.size() << " images of "
-                << sources.size() << " dev sources\n";
+                << sources.size() << " " << part << " sources\n";
     }
     PairSampler::Parameters sp = o.sampling;
     sp.max_pairs = o.synthetic_pairs;

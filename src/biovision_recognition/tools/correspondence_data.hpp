@@ -59,6 +59,12 @@ inline const biovision_common::SourceSplit& descriptorSplit()
 /// training variant is chosen, so that the held-out part decides nothing (issue #22).
 constexpr int kValidationFolds = 4;
 
+/// Whether `part` names a part of the split by source ("heldout", "dev", "fit", "validation").
+inline bool isSourcePart(const std::string& part)
+{
+  return part == "heldout" || part == "dev" || part == "fit" || part == "validation";
+}
+
 /// Whether `source` (a scene, sequence or collection source) is in `part` of descriptorSplit(): "heldout"
 /// (evaluation only), "dev" (training), its two disjoint parts "fit" (variants train here) and "validation"
 /// (variants are compared here), or "all". Throws std::invalid_argument for another part.
@@ -66,7 +72,7 @@ inline bool inSourcePart(const std::string& source, const std::string& part)
 {
   if (part == "all")
     return true;
-  if (part != "heldout" && part != "dev" && part != "fit" && part != "validation")
+  if (!isSourcePart(part))
     throw std::invalid_argument("inSourcePart: unknown part '" + part + "'");
   const bool heldout = descriptorSplit().isTest(source);
   if (part == "heldout" || heldout)
@@ -79,7 +85,7 @@ inline bool inSourcePart(const std::string& source, const std::string& part)
 /// by source, `otherwise` for the old name-order parts ("train", "test") and "all".
 inline std::string collectionPart(const std::string& part, const std::string& otherwise)
 {
-  return part == "dev" || part == "heldout" || part == "fit" || part == "validation" ? part : otherwise;
+  return isSourcePart(part) ? part : otherwise;
 }
 
 /// Which part of a dataset. "train"/"test": scenes in name order alternate train, test, train, ... (the
@@ -212,8 +218,8 @@ struct SourceImage
 
 /// Every image (png, jpg, ppm, pgm) under each folder, grouped by source: a file directly in the folder
 /// is its own source (its stem), a subfolder is one source (a sequence, a scene, an object). At most
-/// `per_source` images per source, evenly spaced in name order. Only sources in `part` (inSourcePart()). Paths under /usr/share/doc/opencv-doc are refused: those
-/// images are evaluation material. Throws std::runtime_error naming a folder that does not exist.
+/// `per_source` images per source, evenly spaced in name order. Only sources in `part` (inSourcePart()).
+/// Paths under /usr/share/doc/opencv-doc are refused: those images are evaluation material. Throws std::runtime_error naming a folder that does not exist.
 inline std::vector<SourceImage> listSourceImages(const std::vector<std::string>& folders, int per_source,
                                                  const std::string& part)
 {

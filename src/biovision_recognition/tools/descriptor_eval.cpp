@@ -296,16 +296,16 @@ Evaluation evaluate(const Options& o, const Models& ours)
   if (!o.images.empty())
   {
     std::mt19937 rng(101);
-    for (const auto& image : listSourceImages(o.images, o.per_source, collectionPart(o.part, "heldout")))
+    const std::string part = collectionPart(o.part, "heldout");
+    for (const auto& image : listSourceImages(o.images, o.per_source, part))
     {
       const cv::Mat bgr = cv::imread(image.path, cv::IMREAD_COLOR);
       // AKAZE builds an octave only while it stays >= 80 x 40 px; the keypoints' scales need 3 of them.
       if (bgr.empty() || bgr.cols < 400 || bgr.rows < 300)
         continue;
-      pairs.push_back(syntheticPair(bgr,
-                                    collectionPart(o.part, "heldout") + "/" + image.source + "/" +
-                                        std::filesystem::path(image.path).filename().string(),
-                                    4.0, true, rng));
+      pairs.push_back(
+          syntheticPair(bgr, part + "/" + image.source + "/" + std::filesystem::path(image.path).filename().string(),
+                        4.0, true, rng));
     }
   }
   for (const auto& path : o.tilt_images)
@@ -458,19 +458,20 @@ nlohmann::ordered_json report(const Options& o, const Evaluation& evaluation)
              " by source; the models compared on it trained with --part fit, the other folds).";
   else if (!o.stereo.empty() && o.part == "test")
     notes += " Stereo scenes: the odd scenes in name order (the session-4 models trained on the even ones).";
+  const std::string images_part = collectionPart(o.part, "heldout");
   if (!o.images.empty())
     notes +=
-        " Image collections: one synthetic view (ASIFT tilt <= 4 with perspective, photometric change) of images "
-        "of their " +
-        collectionPart(o.part, "heldout") + " sources" +
-        (collectionPart(o.part, "heldout") == "heldout" ? " (never trained on by models made with --part dev)." : ".");
+        " Image collections: one synthetic view (ASIFT tilt <= 4 with perspective, photometric change) of "
+        "images of their " +
+        images_part + " sources" +
+        (images_part == "heldout" ? " (never trained on by models made with --part dev)." : ".");
   if (!o.shaped_peers.empty())
     notes +=
         " +shape rows: the peer run on each keypoint's patch resampled by our affine shape adaptation (a hybrid made "
         "to ask whether a gain is the adaptation's or the descriptor's, not the peer as OpenCV ships it; its time "
         "includes one warp and one image per keypoint).";
   results["notes"] = notes;
-  if (collectionPart(o.part, "") == o.part)
+  if (isSourcePart(o.part))
   {
     std::vector<std::string> scenes;
     if (!o.stereo.empty())

@@ -29,7 +29,8 @@ cv::Mat scene(const cv::Mat& object, double degrees, double scale, cv::Point at,
 std::shared_ptr<const biovision_recognition::V1Descriptor> descriptor()
 {
   static auto d = std::make_shared<const biovision_recognition::V1Descriptor>(
-      biovision_recognition::DescriptorModel::load(BIOVISION_RECOGNITION_MODEL));
+      biovision_recognition::DescriptorModel::load(std::string(BIOVISION_RECOGNITION_MODELS) + "/" +
+                                                   biovision_recognition::kDefaultModelFile));
   return d;
 }
 }  // namespace

@@ -283,7 +283,8 @@ TEST(HandPostureClassifier, AFlatOrHugeOrNonFiniteRegionIsNoGesture)
 TEST(HandGestureReader, KeypointsFirstThenPostureSvmsEachOnItsOwnBox)
 {
   auto descriptor = std::make_shared<const biovision_recognition::V1Descriptor>(
-      biovision_recognition::DescriptorModel::load(BIOVISION_RECOGNITION_MODEL));
+      biovision_recognition::DescriptorModel::load(std::string(BIOVISION_RECOGNITION_MODELS) + "/" +
+                                                   biovision_recognition::kDefaultModelFile));
   GestureRecognizer keypoints(descriptor, GestureRecognizer::Parameters());
   const cv::Mat shapes = biovision_common::SyntheticImages::randomShapes(100, 1);
   cv::Rect where;

@@ -15,6 +15,7 @@
 
 #include "biovision_common/tool_options.hpp"
 #include "biovision_hri/gesture_recognizer.hpp"
+#include "biovision_recognition/descriptor_model.hpp"
 #include "biovision_hri/hand_posture_classifier.hpp"
 #include "hri_datasets.hpp"
 
@@ -23,7 +24,8 @@ using namespace biovision_hri;
 int main(int argc, char** argv)
 {
   std::string out, posture_out, data = hriDataRoot("../shared"), set = "linto", json_path;
-  std::string descriptor_model = ros::package::getPath("biovision_recognition") + "/models/v1_ldahash_128.bin";
+  std::string descriptor_model = ros::package::getPath("biovision_recognition") + "/models/" +
+                                 biovision_recognition::kDefaultModelFile;
   int rejection = 100, seed = 3;
   // Triesch's postures are ASL letters: B is the open palm, D the raised index, V the V sign, A the fist;
   // renamed to the node's gesture names (the `actions` table reads these). Others keep their letter.

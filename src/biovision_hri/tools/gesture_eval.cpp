@@ -16,6 +16,7 @@
 
 #include "biovision_common/tool_options.hpp"
 #include "biovision_hri/gesture_recognizer.hpp"
+#include "biovision_recognition/descriptor_model.hpp"
 #include "biovision_hri/hand_gesture_reader.hpp"
 #include "biovision_hri/hand_posture_classifier.hpp"
 #include "hri_datasets.hpp"
@@ -25,7 +26,8 @@ using namespace biovision_hri;
 int main(int argc, char** argv)
 {
   std::string data = hriDataRoot("../shared"), set = "linto", json_path;
-  std::string descriptor_model = ros::package::getPath("biovision_recognition") + "/models/v1_ldahash_128.bin";
+  std::string descriptor_model = ros::package::getPath("biovision_recognition") + "/models/" +
+                                 biovision_recognition::kDefaultModelFile;
   int rejection = 100, free_regions = 200, seed = 3;
   bool validation = false;
   GestureRecognizer::Parameters p;

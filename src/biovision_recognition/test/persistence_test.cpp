@@ -271,7 +271,8 @@ TEST_F(Persistence, KillDuringSavesLosesNothingAcknowledgedAndLeavesNoDebris)
   // A memory of some size (about 11 MB: 600 views of 500 keypoints, 60 objects), so that a save takes a
   // while, as on a robot that has learned for some time.
   {
-    const auto model = biovision_recognition::DescriptorModel::load(BIOVISION_RECOGNITION_MODEL);
+    const auto model = biovision_recognition::DescriptorModel::load(std::string(BIOVISION_RECOGNITION_MODELS) + "/" +
+                                                                    biovision_recognition::kDefaultModelFile);
     biovision_recognition::ObjectMemory memory(model.bits(), model.id());
     std::mt19937_64 bits(5);
     for (int v = 0; v < 600; ++v)
@@ -411,7 +412,8 @@ TEST_F(Persistence, ARefusedMemoryIsKeptAsideAndNeverOverwritten)
 // that names the file and the problem (the nodelet loader alone exits 1 without a word).
 TEST_F(Persistence, ADamagedDescriptorModelStopsTheNodeWithAClearMessage)
 {
-  const std::string good = readFile(BIOVISION_RECOGNITION_MODEL);
+  const std::string good = readFile(std::string(BIOVISION_RECOGNITION_MODELS) + "/" +
+                                    biovision_recognition::kDefaultModelFile);
   ASSERT_GT(good.size(), 1000u);
   std::string flipped = good;
   flipped[good.size() / 2] ^= 0x01;

@@ -22,7 +22,7 @@ namespace
 {
 std::string modelPath()
 {
-  return BIOVISION_RECOGNITION_MODEL;
+  return std::string(BIOVISION_RECOGNITION_MODELS) + "/" + biovision_recognition::kDefaultModelFile;
 }
 }  // namespace
 

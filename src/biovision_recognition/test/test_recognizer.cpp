@@ -25,7 +25,8 @@ cv::Mat background(int w, int h, unsigned seed)
 
 std::shared_ptr<const V1Descriptor> trainedDescriptor()
 {
-  static auto d = std::make_shared<const V1Descriptor>(DescriptorModel::load(BIOVISION_RECOGNITION_MODEL));
+  static auto d = std::make_shared<const V1Descriptor>(DescriptorModel::load(
+      std::string(BIOVISION_RECOGNITION_MODELS) + "/" + biovision_recognition::kDefaultModelFile));
   return d;
 }
 }  // namespace

@@ -10,6 +10,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <ros/package.h>
 
+#include "biovision_recognition/descriptor_model.hpp"
 #include "biovision_recognition/object_recognizer.hpp"
 #include "biovision_v1/input_image.hpp"
 #include "biovision_common/tool_options.hpp"
@@ -28,7 +29,7 @@ bool isDirectory(const std::string& path)
 
 int main(int argc, char** argv)
 {
-  std::string root, out, model = ros::package::getPath("biovision_recognition") + "/models/v1_ldahash_128.bin";
+  std::string root, out, model = ros::package::getPath("biovision_recognition") + "/models/" + kDefaultModelFile;
   int step = 20;
   biovision_common::ToolOptions options(
       "build_object_memory",

@@ -28,7 +28,7 @@ const char* kDescription =
 
 int main(int argc, char** argv)
 {
-  std::string model_path = ros::package::getPath("biovision_recognition") + "/models/v1_ldahash_128.bin";
+  std::string model_path = ros::package::getPath("biovision_recognition") + "/models/" + kDefaultModelFile;
   std::string json_path;
   int rows = 400, threads = 2, repeats = 7;
   biovision_common::ToolOptions options("projection_bench", kDescription);

@@ -13,6 +13,7 @@
 
 #include "biovision_hri/hand_gesture_reader.hpp"
 #include "biovision_hri/non_maximum_suppression.hpp"
+#include "biovision_recognition/descriptor_model.hpp"
 #include "biovision_ros_common/image_message_converter.hpp"
 #include "biovision_v1/input_image.hpp"
 
@@ -56,7 +57,8 @@ void HriNodelet::onInitNodelet()
   pnh.param<std::string>("gesture_templates", templates, share + "/models/gesture_templates.bin");  // "" = off
   pnh.param<std::string>("posture_model", posture_model, share + "/models/hand_posture.bin");       // "" = off
   pnh.param<std::string>("descriptor_model", descriptor_model,
-                         ros::package::getPath("biovision_recognition") + "/models/v1_ldahash_128.bin");
+                         ros::package::getPath("biovision_recognition") + "/models/" +
+                             biovision_recognition::kDefaultModelFile);
   pnh.param("max_input_age", max_input_age_, 0.5);
   max_input_pixels_ = biovision_ros_common::ImageMessageConverter::maxInputPixels(pnh);  // throws: fatal at start
   pnh.param<std::string>("pan_joint", pan_joint_, "head_pan_joint");

@@ -8,6 +8,10 @@
 
 namespace biovision_recognition
 {
+/// The model the nodes, tools and tests load when none is named: a file of the package's models/ folder
+/// (models/README.md gives its training command and figures). Named here only, so a switch is one line.
+inline constexpr char kDefaultModelFile[] = "v1_ldahash_128.bin";
+
 /// A trained binary descriptor: bit i = 1 where (P x)_i > t_i (thesis 3.3.3-3.3.4).
 struct DescriptorModel
 {

@@ -15,6 +15,7 @@
 
 #include "biovision_common/atomic_file.hpp"
 #include "biovision_common/stored_file.hpp"
+#include "biovision_recognition/descriptor_model.hpp"
 #include "biovision_recognition/object_locator.hpp"
 #include "biovision_ros_common/image_message_converter.hpp"
 #include "biovision_ros_common/processing_times.hpp"
@@ -33,7 +34,7 @@ void RecognitionNodelet::onInitNodelet()
   it_ = std::make_unique<image_transport::ImageTransport>(nh);
   std::string model_file;
   pnh.param<std::string>("model_file", model_file,
-                         ros::package::getPath("biovision_recognition") + "/models/v1_ldahash_128.bin");
+                         ros::package::getPath("biovision_recognition") + "/models/" + kDefaultModelFile);
   pnh.param<std::string>("memory_file", memory_file_, "");
   pnh.param("max_input_age", max_input_age_, 0.5);
   pnh.param("max_disparity_wait", max_disparity_wait_, max_disparity_wait_);

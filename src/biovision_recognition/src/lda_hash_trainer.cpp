@@ -14,41 +14,37 @@ namespace
 {
 using MatrixD = Eigen::MatrixXd;
 
-/// Leading `rank` eigenpairs of D^T D / rows, descending.
-void leadingEigenpairs(const LdaHashTrainer::Matrix& d, int rank, int exact_limit, int iterations, unsigned seed,
+/// Leading `rank` eigenpairs of the symmetric matrix `cov`, descending.
+void leadingEigenpairs(const MatrixD& cov, int rank, int exact_limit, int iterations, unsigned seed,
                        Eigen::VectorXd& values, MatrixD& vectors)
 {
-  const Eigen::Index n = d.cols();
-  const double inv_rows = 1.0 / static_cast<double>(d.rows());
+  const Eigen::Index n = cov.cols();
   if (n <= exact_limit)
   {
-    const MatrixD cov = (d.transpose() * d).cast<double>() * inv_rows;
     Eigen::SelfAdjointEigenSolver<MatrixD> eig(cov);
     const Eigen::Index r = std::min<Eigen::Index>(rank, n);
     values = eig.eigenvalues().reverse().head(r);
     vectors = eig.eigenvectors().rowwise().reverse().leftCols(r);
     return;
   }
-  // Randomised subspace iteration on the covariance, in float for the big products.
+  // Randomised subspace iteration: an n x (rank + 32) basis, never an n x n decomposition.
   const Eigen::Index l = std::min<Eigen::Index>(n, rank + 32);
   std::mt19937 rng(seed);
-  std::normal_distribution<float> gauss;
-  Eigen::MatrixXf q(n, l);
+  std::normal_distribution<double> gauss;
+  MatrixD q(n, l);
   for (Eigen::Index i = 0; i < q.size(); ++i)
     q.data()[i] = gauss(rng);
   for (int it = 0; it <= iterations; ++it)
   {
-    const Eigen::MatrixXf dq = d * q;              // rows x l
-    const Eigen::MatrixXf y = d.transpose() * dq;  // n x l
-    Eigen::HouseholderQR<Eigen::MatrixXf> qr(y);
-    q = qr.householderQ() * Eigen::MatrixXf::Identity(n, l);
+    const MatrixD y = cov * q;  // n x l
+    Eigen::HouseholderQR<MatrixD> qr(y);
+    q = qr.householderQ() * MatrixD::Identity(n, l);
   }
-  const MatrixD b = (d * q).cast<double>();
-  const MatrixD small = b.transpose() * b * inv_rows;
+  const MatrixD small = q.transpose() * cov * q;
   Eigen::SelfAdjointEigenSolver<MatrixD> eig(small);
   const Eigen::Index r = std::min<Eigen::Index>(rank, l);
   values = eig.eigenvalues().reverse().head(r);
-  vectors = q.cast<double>() * eig.eigenvectors().rowwise().reverse().leftCols(r);
+  vectors = q * eig.eigenvectors().rowwise().reverse().leftCols(r);
 }
 }  // namespace
 
@@ -65,24 +61,37 @@ DescriptorModel LdaHashTrainer::trainOnDifferences(const Matrix& pa, const Matri
   if (pa.rows() != dp.rows() || na.rows() != dn.rows() || pa.cols() != dp.cols() || pa.cols() != na.cols() ||
       na.cols() != dn.cols())
     throw std::invalid_argument("LdaHashTrainer: the pair matrices disagree in size");
-  const int bits = parameters_.bits;
-  if (pa.rows() < 2 * bits || na.rows() < 2 * bits)
+  if (pa.rows() < 2 * parameters_.bits || na.rows() < 2 * parameters_.bits)  // before the statistics' own checks
     throw std::invalid_argument("LdaHashTrainer: need at least 2 * bits positive and negative pairs");
-  if (parameters_.whitening_rank < bits || pa.cols() < bits)
+  using Kind = LdaHashStatistics::Kind;
+  LdaHashStatistics statistics(static_cast<int>(pa.cols()), static_cast<int>(std::max(pa.rows(), na.rows())),
+                               parameters_.seed);
+  statistics.add(Kind::positive, pa, dp);
+  statistics.add(Kind::negative, na, dn);
+  return train(statistics);
+}
+
+DescriptorModel LdaHashTrainer::train(const LdaHashStatistics& statistics) const
+{
+  using Kind = LdaHashStatistics::Kind;
+  const int bits = parameters_.bits;
+  const long positives = statistics.pairs(Kind::positive), negatives = statistics.pairs(Kind::negative);
+  if (positives < 2 * bits || negatives < 2 * bits)
+    throw std::invalid_argument("LdaHashTrainer: need at least 2 * bits positive and negative pairs");
+  if (parameters_.whitening_rank < bits || statistics.features() < bits)
     throw std::invalid_argument("LdaHashTrainer: whitening_rank and the feature count must be >= bits");
 
   // 1. Regularised Sigma_N^-1/2 on the leading eigenpairs.
   Eigen::VectorXd lambda;
   MatrixD u;
-  leadingEigenpairs(dn, parameters_.whitening_rank, parameters_.exact_limit, parameters_.power_iterations,
-                    parameters_.seed, lambda, u);
+  leadingEigenpairs(statistics.moment(Kind::negative) / static_cast<double>(negatives), parameters_.whitening_rank,
+                    parameters_.exact_limit, parameters_.power_iterations, parameters_.seed, lambda, u);
   const double floor = parameters_.ridge * std::max(lambda(0), 1e-30);
   const Eigen::VectorXd inv_sqrt = (lambda.array().max(0.0) + floor).rsqrt();
   const MatrixD w = inv_sqrt.asDiagonal() * u.transpose();  // rank x n
 
-  // 2. Smallest eigenvectors of the whitened positive covariance.
-  const MatrixD zp = dp.cast<double>() * w.transpose();  // pairs x rank
-  const MatrixD sp = zp.transpose() * zp / static_cast<double>(dp.rows());
+  // 2. Smallest eigenvectors of the whitened positive covariance W Sigma_P W^T.
+  const MatrixD sp = w * statistics.moment(Kind::positive) * w.transpose() / static_cast<double>(positives);
   Eigen::SelfAdjointEigenSolver<MatrixD> eig(sp);  // ascending
   const Eigen::VectorXd s = eig.eigenvalues().head(bits).array().max(1e-12);
   const MatrixD v = eig.eigenvectors().leftCols(bits);
@@ -90,9 +99,12 @@ DescriptorModel LdaHashTrainer::trainOnDifferences(const Matrix& pa, const Matri
 
   DescriptorModel model;
   model.projection = p.cast<float>();
-  // b = a - difference, so P b = P a - P difference.
-  const Matrix ya = pa * model.projection.transpose(), yb = ya - dp * model.projection.transpose();
-  const Matrix za = na * model.projection.transpose(), zb = za - dn * model.projection.transpose();
+  // 3. On the sample; b = a - difference, so P b = P a - P difference.
+  const Matrix pt = model.projection.transpose();
+  const Matrix ya = statistics.sampleA(Kind::positive) * pt;
+  const Matrix yb = ya - statistics.sampleDifference(Kind::positive) * pt;
+  const Matrix za = statistics.sampleA(Kind::negative) * pt;
+  const Matrix zb = za - statistics.sampleDifference(Kind::negative) * pt;
   model.thresholds = thresholds(ya, yb, za, zb);
   return model;
 }

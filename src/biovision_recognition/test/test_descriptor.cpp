@@ -1,11 +1,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 
 #include <opencv2/imgproc.hpp>
 
 #include "biovision_common/hamming_distance.hpp"
+#include "biovision_recognition/lda_hash_statistics.hpp"
 #include "biovision_recognition/lda_hash_trainer.hpp"
 #include "biovision_recognition/pooled_cell_features.hpp"
 #include "biovision_recognition/packed_projection.hpp"
@@ -240,6 +242,113 @@ TEST(LdaHashTrainer, FindsTheKnownProjectionOnSyntheticGaussianClasses)
     const double ones = (proj.array() > m.thresholds(b)).cast<double>().mean();
     EXPECT_NEAR(ones, 0.5, 0.1);
   }
+}
+
+TEST(LdaHashStatistics, MomentsEqualTheDirectSumAndTheSampleIsUniformAndBounded)
+{
+  // Blocks of an odd size so the 2048-row folding falls inside blocks; column 0 carries the row's index.
+  using Kind = LdaHashStatistics::Kind;
+  const int n = 5000, d = 6, cap = 500;
+  std::mt19937 rng(9);
+  std::normal_distribution<float> g;
+  LdaHashStatistics::Matrix a(n, d), diff(n, d);
+  for (int i = 0; i < n; ++i)
+    for (int c = 0; c < d; ++c)
+    {
+      a(i, c) = c == 0 ? static_cast<float>(i) : g(rng);
+      diff(i, c) = g(rng) + 0.5f * c;
+    }
+  LdaHashStatistics statistics(d, cap, 3);
+  for (int from = 0; from < n; from += 37)
+  {
+    const int rows = std::min(37, n - from);
+    statistics.add(Kind::positive, a.middleRows(from, rows), diff.middleRows(from, rows));
+  }
+  EXPECT_EQ(statistics.pairs(Kind::positive), n);
+  EXPECT_EQ(statistics.pairs(Kind::negative), 0);
+  const Eigen::MatrixXd direct = (diff.transpose() * diff).cast<double>();
+  EXPECT_LT((statistics.moment(Kind::positive) - direct).cwiseAbs().maxCoeff(), 1e-4 * direct.cwiseAbs().maxCoeff());
+  EXPECT_EQ(statistics.moment(Kind::negative).cwiseAbs().maxCoeff(), 0.0);
+
+  const auto sample_a = statistics.sampleA(Kind::positive);
+  const auto sample_diff = statistics.sampleDifference(Kind::positive);
+  ASSERT_EQ(sample_a.rows(), cap);
+  std::vector<int> seen;
+  double mean = 0.0;
+  for (int r = 0; r < cap; ++r)
+  {
+    const int i = static_cast<int>(sample_a(r, 0));
+    ASSERT_GE(i, 0);
+    ASSERT_LT(i, n);
+    EXPECT_EQ(sample_a.row(r), a.row(i));  // both sides of one pair, kept together
+    EXPECT_EQ(sample_diff.row(r), diff.row(i));
+    seen.push_back(i);
+    mean += i / static_cast<double>(cap);
+  }
+  std::sort(seen.begin(), seen.end());
+  EXPECT_EQ(std::unique(seen.begin(), seen.end()), seen.end()) << "a pair sampled twice";
+  // Uniform over all 5000 (not the first 500): the mean index within 4 standard errors of (n - 1) / 2.
+  EXPECT_NEAR(mean, (n - 1) / 2.0, 4.0 * n / std::sqrt(12.0 * cap));
+
+  EXPECT_THROW(statistics.add(Kind::negative, a, diff.leftCols(d - 1)), std::invalid_argument);
+  EXPECT_THROW(statistics.add(Kind::negative, a.topRows(3), diff), std::invalid_argument);
+  EXPECT_THROW(LdaHashStatistics(0, 10), std::invalid_argument);
+  EXPECT_THROW(LdaHashStatistics(4, 0), std::invalid_argument);
+}
+
+TEST(LdaHashTrainer, StreamedStatisticsWithASampledThresholdSetGiveTheInMemoryModel)
+{
+  // 40 features with a 4-dimensional class identity; the projection comes from exact moments, so it must equal
+  // the in-memory one; thresholds from a 1000-pair sample of 6000 move by little.
+  using Kind = LdaHashStatistics::Kind;
+  std::mt19937 rng(5);
+  std::normal_distribution<float> g;
+  const int n = 6000, d = 40;
+  LdaHashTrainer::Matrix pa(n, d), pb(n, d), na(n, d), nb(n, d);
+  for (int i = 0; i < n; ++i)
+  {
+    for (int c = 0; c < d; ++c)
+    {
+      const float z = g(rng), noise = c < 4 ? 0.1f : 1.0f;
+      pa(i, c) = z + noise * g(rng);
+      pb(i, c) = z + noise * g(rng);
+      na(i, c) = z + noise * g(rng);
+      nb(i, c) = g(rng) + noise * g(rng);
+    }
+  }
+  LdaHashTrainer::Parameters p;
+  p.bits = 4;
+  p.whitening_rank = 20;
+  const LdaHashTrainer trainer(p);
+  const DescriptorModel in_memory = trainer.train(pa, pb, na, nb);
+  LdaHashStatistics statistics(d, 1000);
+  for (int from = 0; from < n; from += 250)
+  {
+    statistics.add(Kind::positive, pa.middleRows(from, 250), pa.middleRows(from, 250) - pb.middleRows(from, 250));
+    statistics.add(Kind::negative, na.middleRows(from, 250), na.middleRows(from, 250) - nb.middleRows(from, 250));
+  }
+  const DescriptorModel streamed = trainer.train(statistics);
+  ASSERT_EQ(streamed.projection.rows(), 4);
+  EXPECT_LT((streamed.projection - in_memory.projection).cwiseAbs().maxCoeff(),
+            1e-3f * in_memory.projection.cwiseAbs().maxCoeff());
+  // The best threshold is a flat optimum (many thresholds separate about as many pairs), so compare what it
+  // achieves on all 6000 pairs of each kind: the sampled one within 2 points of the full set's (sampling error ~1/sqrt(2000)).
+  auto correct = [&](int b, float t) {
+    const Eigen::VectorXf w = in_memory.projection.row(b).transpose();
+    const auto ya = ((pa * w).array() > t), yb = ((pb * w).array() > t);
+    const auto za = ((na * w).array() > t), zb = ((nb * w).array() > t);
+    return ((ya == yb).cast<double>().sum() + (za != zb).cast<double>().sum()) / (2.0 * n);
+  };
+  for (int b = 0; b < 4; ++b)
+  {
+    EXPECT_GT(correct(b, streamed.thresholds(b)), correct(b, in_memory.thresholds(b)) - 0.02) << "bit " << b;
+    EXPECT_GT(correct(b, in_memory.thresholds(b)), 0.55) << "bit " << b;  // chance: 0.5
+  }
+  // Too few pairs is an error, not a model.
+  LdaHashStatistics few(d, 10);
+  few.add(Kind::positive, pa.topRows(7), pa.topRows(7) - pb.topRows(7));
+  few.add(Kind::negative, na.topRows(7), na.topRows(7) - nb.topRows(7));
+  EXPECT_THROW(trainer.train(few), std::invalid_argument);
 }
 
 TEST(LdaHashTrainer, ThresholdsSeparateWhatTheyShould)

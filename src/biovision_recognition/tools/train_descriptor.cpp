@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include "biovision_recognition/lda_hash_statistics.hpp"
 #include "biovision_recognition/lda_hash_trainer.hpp"
 #include "biovision_recognition/pooled_cell_features.hpp"
 #include "correspondence_data.hpp"
@@ -38,6 +39,9 @@ struct Options
   double synthetic_tilt = 4.0;
   bool photometric = true;
   LdaHashTrainer::Parameters training;
+  std::vector<int> ranks{LdaHashTrainer::Parameters().whitening_rank};
+  std::vector<int> iterations{LdaHashTrainer::Parameters().power_iterations};
+  int threshold_pairs = 20000;  // a threshold's error from sampling ~1/sqrt(20000): below the 1/3000 candidate step
   int threads = 2;
   std::string command;  // the options as given, for the model's provenance
 };
@@ -103,9 +107,22 @@ Options parseOptions(int argc, char** argv)
   app.add_option("--warp-pairs", o.warp_pairs, "pairs per warp")->check(biovision_common::kPositive);
   app.add_option("--pairs", o.sampling.max_pairs, "pairs of each kind per image pair")
       ->check(biovision_common::kPositive);
-  app.add_option("--rank", o.training.whitening_rank, "eigenpairs of Sigma_N kept for the whitening")
+  app.add_option(
+         "--rank", o.ranks,
+         "eigenpairs of Sigma_N kept for the whitening; several (comma-separated): one model each from the same "
+         "pairs (with --power-iterations: every combination), written as <out stem>_rank<R>_it<I><ext>")
+      ->delimiter(',')
       ->check(biovision_common::kPositive);
+  app.add_option("--power-iterations", o.iterations,
+                 "randomised subspace iterations for Sigma_N's leading eigenpairs (more: closer to the exact ones); "
+                 "several: one model each")
+      ->delimiter(',')
+      ->check(biovision_common::kNonNegative);
   app.add_option("--ridge", o.training.ridge, "whitening ridge, relative to Sigma_N's largest eigenvalue")
+      ->check(biovision_common::kPositive);
+  app.add_option("--threshold-pairs", o.threshold_pairs,
+                 "pairs of each kind the thresholds are chosen on (a uniform sample of all pairs; memory: 4 x this x "
+                 "features floats)")
       ->check(biovision_common::kPositive);
   app.add_option("--threads", o.threads, "threads for Eigen's products")->check(biovision_common::kPositive);
   app.add_option("--json", o.json_path, "write the training statistics to this file");
@@ -131,25 +148,6 @@ Options parseOptions(int argc, char** argv)
   return o;
 }
 
-using Matrix = LdaHashTrainer::Matrix;
-
-/// The blocks stacked into one matrix; each block is released once copied, so the peak is one matrix
-/// plus what is left of the blocks (growing a matrix block by block would copy it every time).
-Matrix stack(std::vector<cv::Mat>& blocks, int cols)
-{
-  Eigen::Index rows = 0;
-  for (const auto& b : blocks)
-    rows += b.rows;
-  Matrix m(rows, cols);
-  Eigen::Index at = 0;
-  for (auto& b : blocks)
-  {
-    for (int i = 0; i < b.rows; ++i)
-      m.row(at++) = Eigen::Map<const Eigen::RowVectorXf>(b.ptr<float>(i), cols);
-    b.release();
-  }
-  return m;
-}
 }  // namespace
 
 int main(int argc, char** argv)
@@ -206,8 +204,10 @@ int main(int argc, char** argv)
     sp.max_pairs = o.synthetic_pairs;
     PairSampler synthetic_sampler(sp);
 
-    // One side of each pair and the pair differences: four matrices, not six, for large training sets.
-    std::vector<cv::Mat> xa, dx, ya, dy;
+    // Folded into second moments image pair by image pair: memory is bounded by the feature count and the
+    // threshold sample, not by the number of pairs.
+    using Kind = LdaHashStatistics::Kind;
+    LdaHashStatistics statistics(layout.featureCount(), o.threshold_pairs, o.training.seed);
     for (size_t i = 0; i < pairs.size(); ++i)
     {
       const CorrespondencePair& pair = pairs[i];
@@ -220,43 +220,67 @@ int main(int argc, char** argv)
         std::cerr << "[" << i + 1 << "/" << pairs.size() << "] " << pair.name << ": no pairs (skipped)\n";
         continue;  // e.g. a flat synthetic image: no keypoint
       }
-      xa.push_back(features.extract(pa, p.positive_a));
-      dx.push_back(xa.back() - features.extract(pb, p.positive_b));
-      ya.push_back(features.extract(pa, p.negative_a));
-      dy.push_back(ya.back() - features.extract(pb, p.negative_b));
+      auto add = [&](Kind kind, const auto& keypoints_a, const auto& keypoints_b) {
+        const cv::Mat xa = features.extract(pa, keypoints_a), xb = features.extract(pb, keypoints_b);
+        const Eigen::Map<const LdaHashStatistics::Matrix> a(xa.ptr<float>(), xa.rows, xa.cols),
+            b(xb.ptr<float>(), xb.rows, xb.cols);
+        statistics.add(kind, a, a - b);
+      };
+      add(Kind::positive, p.positive_a, p.positive_b);
+      add(Kind::negative, p.negative_a, p.negative_b);
       std::cerr << "[" << i + 1 << "/" << pairs.size() << "] " << pair.name << ": " << p.positive_a.size()
                 << " pairs of each kind\n";
     }
-    const int n = layout.featureCount();
-    const Matrix positive_a = stack(xa, n), positive_difference = stack(dx, n);
-    const Matrix negative_a = stack(ya, n), negative_difference = stack(dy, n);
-    std::cerr << "training on " << positive_a.rows() << " positive and " << negative_a.rows() << " negative pairs, "
+    const long positives = statistics.pairs(Kind::positive), negatives = statistics.pairs(Kind::negative);
+    std::cerr << "training on " << positives << " positive and " << negatives << " negative pairs, "
               << layout.featureCount() << " features\n";
-    const LdaHashTrainer trainer(o.training);
-    DescriptorModel model = trainer.trainOnDifferences(positive_a, positive_difference, negative_a,
-                                                       negative_difference);
-    model.layout = layout;
     const std::time_t now = std::time(nullptr);
     char date[32];
     std::strftime(date, sizeof(date), "%Y-%m-%d", std::gmtime(&now));
-    model.provenance = "rosrun biovision_recognition train_descriptor " + o.command + "  (" +
-                       std::to_string(positive_a.rows()) + " positive / " + std::to_string(negative_a.rows()) +
-                       " negative pairs, " + date + ")";
-    model.save(o.out);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    std::cerr << "wrote " << o.out << " (" << model.id() << ") in " << seconds << " s\n";
+    nlohmann::ordered_json report, models = nlohmann::ordered_json::array();
+    // Several ranks and iteration counts share one pass over the images (the costly part): one model each.
+    const bool several = o.ranks.size() * o.iterations.size() > 1;
+    for (const int rank : o.ranks)
+      for (const int iterations : o.iterations)
+      {
+        LdaHashTrainer::Parameters training = o.training;
+        training.whitening_rank = rank;
+        training.power_iterations = iterations;
+        DescriptorModel model = LdaHashTrainer(training).train(statistics);
+        model.layout = layout;
+        std::string out = o.out;
+        if (several)
+        {
+          const std::string variant = "_rank" + std::to_string(rank) + "_it" + std::to_string(iterations);
+          const std::filesystem::path path(o.out);
+          out = (path.parent_path() / (path.stem().string() + variant + path.extension().string())).string();
+        }
+        model.provenance = "rosrun biovision_recognition train_descriptor " + o.command + "  (" +
+                           (several ? "this model: rank " + std::to_string(rank) + ", " + std::to_string(iterations) +
+                                          " power iterations, "
+                                    : "") +
+                           std::to_string(positives) + " positive / " + std::to_string(negatives) +
+                           " negative pairs, " + date + ")";
+        model.save(out);
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        std::cerr << "wrote " << out << " (" << model.id() << ", rank " << rank << ", " << iterations
+                  << " power iterations) at " << seconds << " s\n";
+        models.push_back({{"file", out}, {"model", model.id()}, {"rank", rank}, {"power_iterations", iterations}});
+        if (report.empty())
+          report["model"] = model.id();  // the first, as before
+      }
     if (!o.json_path.empty())
     {
-      nlohmann::ordered_json statistics;
-      statistics["model"] = model.id();
-      statistics["features"] = layout.featureCount();
-      statistics["bits"] = model.bits();
-      statistics["positive_pairs"] = positive_a.rows();
-      statistics["negative_pairs"] = negative_a.rows();
-      statistics["seconds"] = seconds;
-      statistics["image_pairs"] = pairs.size();
-      statistics["synthetic_sources"] = sources;
-      biovision_common::writeJsonFile(o.json_path, statistics);
+      report["models"] = models;
+      report["features"] = layout.featureCount();
+      report["bits"] = o.training.bits;
+      report["positive_pairs"] = positives;
+      report["negative_pairs"] = negatives;
+      report["threshold_pairs"] = o.threshold_pairs;
+      report["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      report["image_pairs"] = pairs.size();
+      report["synthetic_sources"] = sources;
+      biovision_common::writeJsonFile(o.json_path, report);
     }
   }
   catch (const std::exception& e)

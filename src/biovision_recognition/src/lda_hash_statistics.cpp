@@ -22,7 +22,13 @@ LdaHashStatistics::LdaHashStatistics(int features, int sample_pairs, unsigned se
   positive_.rng.seed(seed);
   negative_.rng.seed(seed + 1);
   for (Accumulator* acc : {&positive_, &negative_})
+  {
     acc->moment = Eigen::MatrixXd::Zero(features, features);
+    // Allocated at full size here: the pages of large buffers are only committed as rows are written.
+    acc->sample_a.resize(sample_pairs, features);
+    acc->sample_difference.resize(sample_pairs, features);
+    acc->pending.resize(kBlockRows, features);
+  }
 }
 
 void LdaHashStatistics::add(Kind kind, const Matrix& a, const Matrix& difference)
@@ -31,13 +37,6 @@ void LdaHashStatistics::add(Kind kind, const Matrix& a, const Matrix& difference
     throw std::invalid_argument("LdaHashStatistics: a block's sides disagree in size or do not have " +
                                 std::to_string(features_) + " features");
   Accumulator& acc = accumulator(kind);
-  if (acc.sample_a.rows() == 0)
-  {
-    // Allocated once at full size: pages are only committed as rows are written.
-    acc.sample_a.resize(sample_pairs_, features_);
-    acc.sample_difference.resize(sample_pairs_, features_);
-    acc.pending.resize(kBlockRows, features_);
-  }
   for (Eigen::Index i = 0; i < a.rows(); ++i)
   {
     // Algorithm R: row t (0-based) replaces a uniformly chosen slot with probability sample_pairs / (t + 1).

@@ -10,6 +10,7 @@
 using biovision_common::fpr95;
 using biovision_common::fpr95AtThreshold;
 using biovision_common::rocArea;
+using biovision_common::shareWithin;
 
 using namespace biovision_recognition;
 
@@ -44,6 +45,16 @@ TEST(RocMetrics, RocAreaCountsTiesHalf)
   EXPECT_DOUBLE_EQ(rocArea({2.f}, {2.f}), 0.5);
   EXPECT_DOUBLE_EQ(rocArea({3.f}, {1.f, 2.f}), 0.0);
   EXPECT_DOUBLE_EQ(fpr95({}, {1.f}), 1.0);  // nothing to measure: the worst figure
+}
+
+TEST(RocMetrics, ShareWithinARadiusIncludesTheRadius)
+{
+  // A radius matcher accepts d <= r: the recall / false-positive rate descriptor_eval --radii reports.
+  const std::vector<float> distances{0.f, 10.f, 24.f, 24.f, 25.f, 60.f, 90.f, 128.f};
+  EXPECT_DOUBLE_EQ(shareWithin(distances, 23.f), 2.0 / 8.0);
+  EXPECT_DOUBLE_EQ(shareWithin(distances, 24.f), 4.0 / 8.0);
+  EXPECT_DOUBLE_EQ(shareWithin(distances, 128.f), 1.0);
+  EXPECT_DOUBLE_EQ(shareWithin({}, 24.f), 0.0);
 }
 
 TEST(SyntheticViewpoints, TheHomographyMapsImageContentToWhereTheWarpPutsIt)

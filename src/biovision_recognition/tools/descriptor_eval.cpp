@@ -25,6 +25,7 @@
 using biovision_common::fpr95;
 using biovision_common::fpr95AtThreshold;
 using biovision_common::rocArea;
+using biovision_common::shareWithin;
 
 using namespace biovision_recognition;
 
@@ -46,7 +47,8 @@ struct Options
   std::vector<double> tilts{20, 30, 40, 50, 60, 70};
   std::vector<std::string> images;  // collections: synthetic pairs of their held-out sources
   int per_source = 1;
-  std::string command;  // the options as given, for the results
+  std::vector<int> radii;  // Hamming radii to report recall and false-positive rate at (default: none)
+  std::string command;     // the options as given, for the results
 };
 
 Options parseOptions(int argc, char** argv)
@@ -108,6 +110,12 @@ Options parseOptions(int argc, char** argv)
                  "the gain the adaptation's or the descriptor's? (default: none)")
       ->delimiter(',')
       ->check(CLI::IsMember(kPeers));
+  app.add_option("--radii", o.radii,
+                 "also report each binary method's recall and false-positive rate within these Hamming distances "
+                 "[bits], comma-separated: the radius a matcher needs with a model (recognition's max_distance) "
+                 "(default: none)")
+      ->delimiter(',')
+      ->check(biovision_common::kNonNegative);
   app.add_option("--json", o.json_path, "write the results to this file");
   app.callback([&] {
     if (o.stereo.empty() && o.sequence.empty() && o.homography_pairs.empty() && o.tilt_images.empty() &&
@@ -443,6 +451,18 @@ nlohmann::ordered_json report(const Options& o, const Evaluation& evaluation)
                   {"us_per_keypoint", us},
                   {"pairs", s.positive.size()},
                   {"binary", s.binary}};
+    if (s.binary && !o.radii.empty())
+    {
+      std::cout << std::setw(22) << ""
+                << "within radius:";
+      for (int r : o.radii)
+      {
+        const double recall = shareWithin(s.positive, r), false_positive = shareWithin(s.negative, r);
+        results[m]["within"][std::to_string(r)] = {{"recall", recall}, {"fpr", false_positive}};
+        std::cout << " " << r << ": recall " << recall << " fpr " << false_positive << ";";
+      }
+      std::cout << "\n";
+    }
   }
   std::string notes =
       "fpr95 = false-positive rate at exactly 95% recall (ties at the threshold distance shared in proportion, i.e. "

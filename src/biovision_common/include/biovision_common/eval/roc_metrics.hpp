@@ -9,14 +9,23 @@
 
 namespace biovision_common
 {
+/// Share of the distances <= t: the recall (matching pairs) or false-positive rate (non-matching pairs) of
+/// a matcher that accepts every pair within radius t. 0 for no distances.
+inline double shareWithin(const std::vector<float>& distances, float t)
+{
+  if (distances.empty())
+    return 0.0;
+  return static_cast<double>(std::count_if(distances.begin(), distances.end(), [t](float d) { return d <= t; })) /
+         distances.size();
+}
+
 /// False-positive rate at the first distance threshold t whose recall P(d_pos <= t) reaches 95%.
 inline double fpr95AtThreshold(std::vector<float> pos, const std::vector<float>& neg)
 {
   if (pos.empty() || neg.empty())
     return 1.0;
   std::sort(pos.begin(), pos.end());
-  const float t = pos[static_cast<size_t>(std::ceil(0.95 * pos.size())) - 1];
-  return static_cast<double>(std::count_if(neg.begin(), neg.end(), [t](float d) { return d <= t; })) / neg.size();
+  return shareWithin(neg, pos[static_cast<size_t>(std::ceil(0.95 * pos.size())) - 1]);
 }
 
 /// False-positive rate at exactly 95% recall on the ROC curve: between the two thresholds whose recall

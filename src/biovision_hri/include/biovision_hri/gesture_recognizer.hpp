@@ -50,7 +50,7 @@ public:
     void validate() const;
   };
 
-  /// descriptor: biovision_recognition's trained descriptor (models/v1_ldahash_128.bin). Throws
+  /// descriptor: biovision_recognition's trained descriptor (the nodes load models/kDefaultModelFile). Throws
   /// std::invalid_argument for invalid parameters or a null descriptor.
   GestureRecognizer(std::shared_ptr<const biovision_recognition::V1Descriptor> descriptor,
                     const Parameters& parameters);

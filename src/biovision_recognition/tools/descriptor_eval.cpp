@@ -112,8 +112,8 @@ Options parseOptions(int argc, char** argv)
       ->check(CLI::IsMember(kPeers));
   app.add_option("--radii", o.radii,
                  "also report each binary method's recall and false-positive rate within these Hamming distances "
-                 "[bits], comma-separated: the radius a matcher needs with a model (recognition's max_distance) "
-                 "(default: none)")
+                 "[bits], comma-separated: the radius a matcher needs with a model (recognition's max_distance); "
+                 "compare only codes of one length (ours 128 bits, ORB 256, AKAZE 486, BRISK 512) (default: none)")
       ->delimiter(',')
       ->check(biovision_common::kNonNegative);
   app.add_option("--json", o.json_path, "write the results to this file");
@@ -451,14 +451,16 @@ nlohmann::ordered_json report(const Options& o, const Evaluation& evaluation)
                   {"us_per_keypoint", us},
                   {"pairs", s.positive.size()},
                   {"binary", s.binary}};
-    if (s.binary && !o.radii.empty())
+    if (s.binary && !o.radii.empty() && !s.positive.empty() && !s.negative.empty())
     {
       std::cout << std::setw(22) << ""
                 << "within radius:";
       for (int r : o.radii)
       {
         const double recall = shareWithin(s.positive, r), false_positive = shareWithin(s.negative, r);
-        results[m]["within"][std::to_string(r)] = {{"recall", recall}, {"fpr", false_positive}};
+        // Beside the methods' flat rows, so the report renders it as a table of its own.
+        results["within_radius"][m]["recall_" + std::to_string(r)] = recall;
+        results["within_radius"][m]["fpr_" + std::to_string(r)] = false_positive;
         std::cout << " " << r << ": recall " << recall << " fpr " << false_positive << ";";
       }
       std::cout << "\n";

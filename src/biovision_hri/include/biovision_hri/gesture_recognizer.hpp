@@ -50,8 +50,9 @@ public:
     void validate() const;
   };
 
-  /// descriptor: biovision_recognition's trained descriptor (the nodes load models/kDefaultModelFile). Throws
-  /// std::invalid_argument for invalid parameters or a null descriptor.
+  /// descriptor: biovision_recognition's trained descriptor (the nodes load the file that
+  /// biovision_recognition::kDefaultModelFile names). Throws std::invalid_argument for invalid parameters or a
+  /// null descriptor.
   GestureRecognizer(std::shared_ptr<const biovision_recognition::V1Descriptor> descriptor,
                     const Parameters& parameters);
 

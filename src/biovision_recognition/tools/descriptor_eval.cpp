@@ -153,13 +153,26 @@ cv::KeyPoint toCv(const biovision_v1::Keypoint& kp, const std::string& method, i
   else if (method == "akaze")
   {
     // MLDB's window is ~10 x size wide; class_id must be the scale-space level (sigma = 1.6 * 2^(i/4)).
+    // Levels beyond the image's scale space are left to describePeer to drop (akazeLevels).
     const double sigma = support / 10.0 / 1.5;
-    const int i = std::clamp(static_cast<int>(std::lround(4 * std::log2(sigma / 1.6))), 0, 15);
+    const int i = std::max(0, static_cast<int>(std::lround(4 * std::log2(sigma / 1.6))));
     k.class_id = i;
     k.octave = i / 4;
     k.size = static_cast<float>(1.6 * std::pow(2.0, i / 4.0) * 1.5);
   }
   return k;
+}
+
+/// Scale-space levels AKAZE builds for an image of `size` (OpenCV 4.6, AKAZE::create's defaults: up to 4
+/// octaves of 4 sublevels; octave o > 0 only while the image, halved o times, stays >= 80 x 40 px). A
+/// keypoint whose level (class_id) is beyond them fails an assertion in compute(): a model with a larger
+/// patch than the committed ones' (e.g. --patch 12) gave such supports on 400 x 300 images.
+int akazeLevels(const cv::Size& size)
+{
+  int octaves = 1;
+  while (octaves < 4 && (size.width >> octaves) >= 80 && (size.height >> octaves) >= 40)
+    ++octaves;
+  return 4 * octaves;
 }
 
 cv::Ptr<cv::Feature2D> createPeer(const std::string& method)
@@ -182,11 +195,21 @@ Described describePeer(const std::string& method, const cv::Mat& image, const st
                        float patch_wavelengths, double& seconds)
 {
   const cv::Ptr<cv::Feature2D> f = createPeer(method);
-  std::vector<cv::KeyPoint> cv_kps;
-  for (size_t i = 0; i < kps.size(); ++i)
-    cv_kps.push_back(toCv(kps[i], method, static_cast<int>(i), patch_wavelengths));
   cv::Mat gray;
   cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
+  // AKAZE: keypoints beyond the image's scale space are dropped, as the other peers drop those at the border
+  // (their pairs then count for no method).
+  const int levels = method == "akaze" ? akazeLevels(gray.size()) : 0;
+  std::vector<cv::KeyPoint> cv_kps;
+  std::vector<int> kept;  // per AKAZE keypoint, its index in kps
+  for (size_t i = 0; i < kps.size(); ++i)
+  {
+    const cv::KeyPoint k = toCv(kps[i], method, static_cast<int>(i), patch_wavelengths);
+    if (method == "akaze" && k.class_id >= levels)
+      continue;
+    cv_kps.push_back(k);
+    kept.push_back(static_cast<int>(i));
+  }
   Described d;
   const auto t0 = std::chrono::steady_clock::now();
   f->compute(gray, cv_kps, d.descriptors);
@@ -195,10 +218,10 @@ Described describePeer(const std::string& method, const cv::Mat& image, const st
   if (method == "akaze")
   {
     // AKAZE keeps every keypoint in order (class_id holds its level, not our index).
-    if (cv_kps.size() != kps.size())
+    if (cv_kps.size() != kept.size())
       throw std::runtime_error("AKAZE dropped keypoints");
-    for (size_t i = 0; i < kps.size(); ++i)
-      d.row[i] = static_cast<int>(i);
+    for (size_t r = 0; r < kept.size(); ++r)
+      d.row[kept[r]] = static_cast<int>(r);
   }
   else
     for (size_t r = 0; r < cv_kps.size(); ++r)
@@ -235,6 +258,8 @@ Described describeShapedPeer(const std::string& method, const cv::Mat& image,
     biovision_v1::Keypoint centred = kps[i];
     centred.x = centred.y = half;
     std::vector<cv::KeyPoint> one{toCv(centred, method, 0, patch_wavelengths)};
+    if (method == "akaze" && one.front().class_id >= akazeLevels(patch.size()))
+      continue;
     cv::Mat descriptor;
     f->compute(patch, one, descriptor);
     if (one.size() == 1 && descriptor.rows == 1)

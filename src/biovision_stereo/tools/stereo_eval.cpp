@@ -258,16 +258,37 @@ int main(int argc, char** argv)
     std::cerr << "stereo_eval: " << e.what() << "\n";
     return 2;
   }
-  if (!only_scenes.empty())
+  // Scene names as the split writes them (any case); a name that matches no scene is refused, not
+  // silently dropped (an empty run would read as a result).
+  std::vector<std::string> wanted;
+  for (const std::string& name : only_scenes)
+    wanted.push_back(lower(name));
+  std::string available;
+  for (const StereoScene& s : scenes)
+    available += (available.empty() ? "" : ", ") + s.name;
+  for (const std::string& name : wanted)
+    if (std::none_of(scenes.begin(), scenes.end(), [&](const StereoScene& s) { return lower(s.name) == name; }))
+    {
+      std::cerr << "stereo_eval: --scenes: no scene '" << name << "' in " << dataset << " (it has: " << available
+                << ")\n";
+      return 2;
+    }
+  if (!wanted.empty())
     scenes.erase(std::remove_if(scenes.begin(), scenes.end(),
                                 [&](const StereoScene& s) {
-                                  return std::find(only_scenes.begin(), only_scenes.end(), s.name) == only_scenes.end();
+                                  return std::find(wanted.begin(), wanted.end(), lower(s.name)) == wanted.end();
                                 }),
                  scenes.end());
   if (split != "all")
     scenes.erase(std::remove_if(scenes.begin(), scenes.end(),
                                 [&](const StereoScene& s) { return isTrainScene(s.name) != (split == "train"); }),
                  scenes.end());
+  if (scenes.empty())
+  {
+    std::cerr << "stereo_eval: no scene of " << dataset << " is left with --split " << split
+              << (wanted.empty() ? "" : " and --scenes") << "\n";
+    return 2;
+  }
 
   std::map<std::string, std::vector<DisparityMetrics>> per_method;
   std::map<std::string, std::vector<double>> seconds;

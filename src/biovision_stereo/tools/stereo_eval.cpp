@@ -266,11 +266,11 @@ int main(int argc, char** argv)
   std::string available;
   for (const StereoScene& s : scenes)
     available += (available.empty() ? "" : ", ") + s.name;
-  for (const std::string& name : wanted)
-    if (std::none_of(scenes.begin(), scenes.end(), [&](const StereoScene& s) { return lower(s.name) == name; }))
+  for (size_t i = 0; i < wanted.size(); ++i)
+    if (std::none_of(scenes.begin(), scenes.end(), [&](const StereoScene& s) { return lower(s.name) == wanted[i]; }))
     {
-      std::cerr << "stereo_eval: --scenes: no scene '" << name << "' in " << dataset << " (it has: " << available
-                << ")\n";
+      std::cerr << "stereo_eval: --scenes: no scene '" << only_scenes[i] << "' in " << dataset
+                << " (it has: " << available << ")\n";
       return 2;
     }
   if (!wanted.empty())
@@ -286,7 +286,7 @@ int main(int argc, char** argv)
   if (scenes.empty())
   {
     std::cerr << "stereo_eval: no scene of " << dataset << " is left with --split " << split
-              << (wanted.empty() ? "" : " and --scenes") << "\n";
+              << (wanted.empty() ? "" : " and --scenes") << " (it has: " << available << ")\n";
     return 2;
   }
 
